@@ -1,0 +1,19 @@
+#pragma once
+// The subcommands of the `kontur` tool. Each registers its options on the application and
+// returns nothing; the chosen one runs from main() through the callback it set.
+#include <CLI/CLI.hpp>
+
+namespace kontur::app {
+
+/// Exit codes of the command (documented in the README and in `kontur --help`).
+enum ExitCode : int {
+  exit_ok = 0,           ///< success
+  exit_invalid_input = 1,///< the input (curve, program, machine, value) breaks a rule
+  exit_usage = 2,        ///< the command line is wrong
+  exit_internal = 3,     ///< a bug: please report it
+};
+
+/// `kontur spline FILE`: validate a curve, print its span polynomials, lengths, differences.
+void register_spline_command(CLI::App& app, int& exit_code);
+
+}  // namespace kontur::app

@@ -1,0 +1,43 @@
+// The `kontur` command: one subcommand per job, the library does the work.
+#include "commands.hpp"
+
+#include <kontur/error.hpp>
+#include <kontur/version.hpp>
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <exception>
+
+int main(int argc, char** argv) {
+  using namespace kontur::app;
+  CLI::App app{"kontur: motion interpolation for CNC machines and robots.\n"
+               "Exit codes: 0 success, 1 invalid input (file, curve, value), 2 wrong command line, "
+               "3 internal error.",
+               "kontur"};
+  app.set_version_flag("--version", std::string("kontur ") + kontur::version_string);
+  app.require_subcommand(1);
+  app.footer("Example:\n  kontur spline examples/curves/seed_example1.json --step 0.05\n"
+             "Run `kontur SUBCOMMAND --help` for the options of each subcommand.");
+  int exit_code = exit_ok;
+  register_spline_command(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return exit_usage;
+  } catch (const kontur::InputError& e) {
+    std::fprintf(stderr, "kontur: error: %s\n", e.what());
+    return exit_invalid_input;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "kontur: internal error: %s\n", e.what());
+    return exit_internal;
+  }
+  return exit_code;
+}

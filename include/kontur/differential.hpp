@@ -1,0 +1,23 @@
+#pragma once
+// Differential geometry of a curve at a point: unit tangent, curvature, and the chord
+// (bow-height) error of a step, used by the feed planner and the seed 004 interpolator.
+#include <kontur/curve.hpp>
+
+namespace kontur {
+
+/// Unit tangent C'/|C'|; zero vector where the curve is not regular (|C'| = 0).
+[[nodiscard]] Vec3 unit_tangent(const Derivatives& d) noexcept;
+/// Curvature kappa = |C' x C''| / |C'|^3 [1/mm]; 0 where the curve is not regular.
+[[nodiscard]] double curvature(const Derivatives& d) noexcept;
+/// Chord (bow-height) error [mm] of a chord of length `step_mm` [mm] on a circle of radius
+/// `radius_mm` [mm]: delta = R - sqrt(R^2 - L^2/4). A step longer than the diameter returns R.
+/// An infinite radius (straight line) gives 0.
+[[nodiscard]] double chord_error(double radius_mm, double step_mm) noexcept;
+/// Longest chord [mm] whose bow height on radius `radius_mm` stays within `tolerance_mm`:
+/// L = 2 sqrt(R^2 - (R - delta)^2). Infinite for a straight line (radius = infinity).
+[[nodiscard]] double max_chord_for_error(double radius_mm, double tolerance_mm) noexcept;
+/// Chord error [mm] of the step from u0 to u1 on a curve, measured as the largest distance of
+/// the curve between u0 and u1 from the chord, sampled at `samples` interior points.
+[[nodiscard]] double chord_error(const Curve& curve, double u0, double u1, int samples = 16) noexcept;
+
+}  // namespace kontur

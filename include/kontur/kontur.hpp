@@ -1,0 +1,12 @@
+#pragma once
+// Everything of Kontur's public interface in one include.
+#include <kontur/curve.hpp>
+#include <kontur/differential.hpp>
+#include <kontur/error.hpp>
+#include <kontur/forward_difference.hpp>
+#include <kontur/io/curve_json.hpp>
+#include <kontur/length.hpp>
+#include <kontur/nurbs.hpp>
+#include <kontur/span_polynomial.hpp>
+#include <kontur/tolerances.hpp>
+#include <kontur/version.hpp>

@@ -1,0 +1,73 @@
+#pragma once
+// Curve length: the Simpson-Runge method of seed 000 (both of its schemes) and Kontur's default,
+// adaptive Gauss-Kronrod (7/15) per span, plus the arc-length table that inverts it, u(s).
+#include <kontur/curve.hpp>
+#include <kontur/tolerances.hpp>
+
+#include <vector>
+
+namespace kontur {
+
+/// A computed length with its cost and error estimate.
+struct LengthResult {
+  double length_mm = 0.0;          ///< the length [mm] (Simpson: with Runge's correction)
+  double error_estimate_mm = 0.0;  ///< estimated absolute error [mm]
+  long evaluations = 0;            ///< evaluations of the parametric speed |C'(u)|
+  bool converged = false;          ///< the requested tolerance was met
+  /// Simpson's whole-curve scheme: (n intervals, raw Simpson value l_n [mm]) per halving,
+  /// as in the seed's tables. Empty for the other methods.
+  std::vector<std::pair<long, double>> history;
+};
+
+/// The two schemes of seed 000.
+enum class SimpsonScheme {
+  per_span,     ///< Simpson-Runge on each span, then the sum (scheme 1)
+  whole_curve,  ///< over the whole parameter range, halving the step (scheme 2)
+};
+
+/// Seed 000: composite Simpson with n = 2, 4, 8, ... intervals, stopped by Runge's rule
+/// |l_2n - l_n| / 15 < relative_tolerance * |l_2n|, result l_2n + (l_2n - l_n) / 15.
+/// Values of earlier halvings are reused, so each halving evaluates only the new points.
+[[nodiscard]] LengthResult simpson_runge_length(const Curve& curve, SimpsonScheme scheme,
+                                                double relative_tolerance = tolerances::simpson_relative,
+                                                int max_halvings = tolerances::simpson_max_halvings);
+
+/// Kontur's default: adaptive Gauss-Kronrod 7/15 on each piece between breakpoints, bisecting
+/// until the QUADPACK error estimate is below relative_tolerance of the piece's length.
+[[nodiscard]] LengthResult gauss_kronrod_length(const Curve& curve,
+                                                double relative_tolerance = tolerances::length_relative);
+/// The same on [u0, u1] (u0 <= u1), splitting at the curve's breakpoints inside.
+[[nodiscard]] LengthResult gauss_kronrod_length(const Curve& curve, double u0, double u1,
+                                                double relative_tolerance = tolerances::length_relative);
+
+/// Length [mm] of the whole curve by the default method.
+[[nodiscard]] double length(const Curve& curve);
+
+/// Arc length s(u) and its inverse u(s), from a table of the adaptive quadrature's nodes built
+/// once; a query is a binary search and a few safeguarded Newton steps on one table interval.
+/// Keeps a reference to the curve, which must outlive the table.
+class ArcLengthTable {
+public:
+  explicit ArcLengthTable(const Curve& curve, double relative_tolerance = tolerances::length_relative);
+
+  /// Total length [mm].
+  [[nodiscard]] double length_mm() const noexcept { return s_.back(); }
+  /// Arc length [mm] from u_min to u (u clamped to the range).
+  [[nodiscard]] double s_of_u(double u) const noexcept;
+  /// Parameter at arc length s [mm] (s clamped to [0, length]); relative accuracy 1e-13 of the
+  /// length. Allocation-free.
+  [[nodiscard]] double u_of_s(double s_mm) const noexcept;
+  /// Number of table intervals.
+  [[nodiscard]] std::size_t intervals() const noexcept { return u_.size() - 1; }
+  /// Evaluations of |C'| spent building the table.
+  [[nodiscard]] long build_evaluations() const noexcept { return build_evaluations_; }
+
+private:
+  const Curve* curve_;
+  std::vector<double> u_;      // interval ends, u_[0] = u_min
+  std::vector<double> s_;      // arc length at u_[k] [mm]
+  std::vector<double> speed_;  // |C'(u_[k])|
+  long build_evaluations_ = 0;
+};
+
+}  // namespace kontur

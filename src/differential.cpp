@@ -1,0 +1,50 @@
+#include <kontur/differential.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace kontur {
+
+Vec3 unit_tangent(const Derivatives& d) noexcept {
+  const double n = d[1].norm();
+  return n > 0.0 ? Vec3(d[1] / n) : Vec3::Zero();
+}
+
+double curvature(const Derivatives& d) noexcept {
+  const double v = d[1].norm();
+  if (!(v > 0.0)) return 0.0;
+  return d[1].cross(d[2]).norm() / (v * v * v);
+}
+
+double chord_error(double radius_mm, double step_mm) noexcept {
+  if (!std::isfinite(radius_mm)) return 0.0;
+  const double half = 0.5 * step_mm;
+  if (half >= radius_mm) return radius_mm;
+  // R - sqrt(R^2 - L^2/4), written without cancellation: (L^2/4) / (R + sqrt(R^2 - L^2/4)).
+  return half * half / (radius_mm + std::sqrt(radius_mm * radius_mm - half * half));
+}
+
+double max_chord_for_error(double radius_mm, double tolerance_mm) noexcept {
+  if (!std::isfinite(radius_mm)) return std::numeric_limits<double>::infinity();
+  if (tolerance_mm >= radius_mm) return 2.0 * radius_mm;
+  // 2 sqrt(R^2 - (R - delta)^2) = 2 sqrt(delta (2R - delta)).
+  return 2.0 * std::sqrt(tolerance_mm * (2.0 * radius_mm - tolerance_mm));
+}
+
+double chord_error(const Curve& curve, double u0, double u1, int samples) noexcept {
+  const Vec3 a = curve.point(u0), b = curve.point(u1);
+  const Vec3 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  double worst = 0.0;
+  samples = std::max(samples, 1);
+  for (int i = 1; i <= samples; ++i) {
+    const double u = u0 + (u1 - u0) * i / (samples + 1.0);
+    const Vec3 q = curve.point(u) - a;
+    const double t = len2 > 0.0 ? std::clamp(q.dot(ab) / len2, 0.0, 1.0) : 0.0;
+    worst = std::max(worst, (q - t * ab).norm());
+  }
+  return worst;
+}
+
+}  // namespace kontur
