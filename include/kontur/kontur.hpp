@@ -4,8 +4,10 @@
 #include <kontur/differential.hpp>
 #include <kontur/error.hpp>
 #include <kontur/forward_difference.hpp>
+#include <kontur/helix_arc.hpp>
 #include <kontur/io/curve_json.hpp>
 #include <kontur/length.hpp>
+#include <kontur/line_segment.hpp>
 #include <kontur/nurbs.hpp>
 #include <kontur/span_polynomial.hpp>
 #include <kontur/tolerances.hpp>

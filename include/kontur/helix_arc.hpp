@@ -1,0 +1,46 @@
+#pragma once
+// A circular arc in any plane of space, optionally with a linear rise along the plane's normal
+// (a helix), as a Curve: C(u) = centre + R cos(phi) e1 + R sin(phi) e2 + rise u n, phi = sweep u,
+// u in [0, 1]. It is the geometry of G2/G3 arcs and helices and of the circle through three
+// points; the frame (centre, e1, e2, n) is the relative frame of the seed monograph.
+#include <kontur/curve.hpp>
+
+namespace kontur {
+
+/// Frame of a circle: origin at the centre, e1 towards the start point, n the plane's normal,
+/// e2 = n x e1 (right-handed); the motion is counter-clockwise about n for a positive sweep.
+struct CircleFrame {
+  Vec3 centre = Vec3::Zero();    ///< centre [mm]
+  Vec3 e1 = Vec3::UnitX();       ///< unit vector from the centre to the start point
+  Vec3 e2 = Vec3::UnitY();       ///< unit vector, n x e1
+  Vec3 normal = Vec3::UnitZ();   ///< unit normal of the plane
+};
+
+class HelixArc final : public Curve {
+public:
+  /// @param frame  orthonormal frame (checked to 1e-9; throws InputError otherwise)
+  /// @param radius_mm  radius R > 0 [mm]
+  /// @param sweep_rad  swept angle [rad], > 0 (counter-clockwise about frame.normal); may exceed 2 pi
+  /// @param rise_mm  displacement along frame.normal from start to end [mm] (0 for a plane arc)
+  HelixArc(const CircleFrame& frame, double radius_mm, double sweep_rad, double rise_mm = 0.0);
+
+  [[nodiscard]] double u_min() const noexcept override { return 0.0; }
+  [[nodiscard]] double u_max() const noexcept override { return 1.0; }
+  [[nodiscard]] Derivatives derivatives(double u, int order) const noexcept override;
+  [[nodiscard]] std::vector<double> breakpoints() const override { return {0.0, 1.0}; }
+
+  [[nodiscard]] const CircleFrame& frame() const noexcept { return frame_; }
+  [[nodiscard]] double radius_mm() const noexcept { return radius_; }
+  [[nodiscard]] double sweep_rad() const noexcept { return sweep_; }
+  [[nodiscard]] double rise_mm() const noexcept { return rise_; }
+  /// Exact length [mm]: sqrt((R sweep)^2 + rise^2).
+  [[nodiscard]] double length_mm() const noexcept;
+  /// Point at angle phi [rad] from the start (and the matching rise).
+  [[nodiscard]] Vec3 point_at_angle(double phi_rad) const noexcept;
+
+private:
+  CircleFrame frame_;
+  double radius_, sweep_, rise_;
+};
+
+}  // namespace kontur
