@@ -106,7 +106,7 @@ void run_spline(const SplineOptions& o) {
         r["point"] = {q.x(), q.y(), q.z()};
         for (int a = 0; a < dims; ++a) {
           const auto d = fd.differences(a);
-          r["differences"][kAxis[a]] = std::vector<double>(d.begin(), d.end());
+          r["differences"][kAxis[a]] = std::vector<double>(d.begin(), d.begin() + fd.degree() + 1);
         }
         rows.push_back(r);
       } while (fd.step());
@@ -155,7 +155,10 @@ void run_spline(const SplineOptions& o) {
     do {
       std::string line = fmt::format("  {:>8} {:>12.8g} {:>4}", fd.n(), fd.u(), fd.span());
       for (int a = 0; a < dims; ++a)
-        for (const double d : fd.differences(a)) line += fmt::format(" {:>14.8g}", d == 0.0 ? 0.0 : d);
+        for (int k = 0; k <= fd.degree(); ++k) {
+          const double d = fd.differences(a)[static_cast<std::size_t>(k)];
+          line += fmt::format(" {:>14.8g}", d == 0.0 ? 0.0 : d);
+        }
       fmt::print("{}\n", line);
     } while (fd.step());
   }
