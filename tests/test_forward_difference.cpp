@@ -5,6 +5,7 @@
 #include <kontur/nurbs.hpp>
 
 #include "support/random_curves.hpp"
+#include "support/seed_curves.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -13,13 +14,7 @@
 namespace kontur {
 namespace {
 
-NurbsData seed_example1() {
-  NurbsData d;
-  d.degree = 3;
-  d.knots = {0, 0, 0, 0, 0.5, 1, 1, 1, 1};
-  d.points = {{-100, -60, 0}, {-100, 0, 0}, {-40, 70, 0}, {60, 90, 0}, {30, 120, 0}};
-  return d;
-}
+NurbsData seed_example1() { return testing::seed_example(1); }
 
 TEST(ForwardDifference, SeedInitialDifferencesAtN0AndN10) {
   const NurbsCurve curve(seed_example1());

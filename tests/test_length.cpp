@@ -9,6 +9,7 @@
 
 #include "support/occt_oracle.hpp"
 #include "support/random_curves.hpp"
+#include "support/seed_curves.hpp"
 
 #include <cmath>
 #include <limits>
@@ -17,18 +18,9 @@
 namespace kontur {
 namespace {
 
-NurbsData seed_example(int which) {
-  NurbsData d;
-  d.degree = 3;
-  d.knots = {0, 0, 0, 0, 0.5, 1, 1, 1, 1};
-  if (which == 1)
-    d.points = {{-100, -60, 0}, {-100, 0, 0}, {-40, 70, 0}, {60, 90, 0}, {30, 120, 0}};
-  else
-    d.points = {{0, 0, 0}, {-9.5, 115.8, 0}, {60, -35.8, 0}, {129.5, 115.8, 0}, {120, 0, 0}};
-  return d;
-}
+using testing::seed_example;
 
-constexpr double kTrue1 = 249.463109910705, kTrue2 = 252.584228618995;
+constexpr double kTrue1 = testing::seed_true_length_1, kTrue2 = testing::seed_true_length_2;
 
 // The seed's tables to the printed digits (methods.md: 249.463 at n = 32, the seed's 249.462 is
 // a rounding; example 2's typos at n = 8 and 32 are corrected there).
