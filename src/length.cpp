@@ -198,7 +198,9 @@ double ArcLengthTable::s_of_u(double u) const noexcept {
   return s_[k] + patterson_fixed(*curve_, u_[k], u, level_[k]);
 }
 
-double ArcLengthTable::u_of_s(double s) const noexcept {
+double ArcLengthTable::u_of_s(double s) const noexcept { return u_of_s(s, std::numeric_limits<double>::quiet_NaN()); }
+
+double ArcLengthTable::u_of_s(double s, double u_hint) const noexcept {
   const double total = s_.back();
   if (!(s > 0.0)) return u_.front();
   if (s >= total) return u_.back();
@@ -210,6 +212,7 @@ double ArcLengthTable::u_of_s(double s) const noexcept {
   // mean is within a few per cent on a table interval, and Newton does the rest.
   double lo = ua, hi = ub;
   double u = (sb > sa) ? ua + (ub - ua) * (ds / (sb - sa)) : ua;
+  if (u_hint > ua && u_hint < ub) u = u_hint;  // false for NaN
   const double ftol = tolerances::inverse_length_relative * std::max(total, 1e-300);
   for (int it_count = 0; it_count < tolerances::inverse_length_max_iterations; ++it_count) {
     const double f = (u > ua ? patterson_fixed(*curve_, ua, u, level_[k]) : 0.0) - ds;

@@ -2,6 +2,7 @@
 // the global operator new for this test binary).
 #include <gtest/gtest.h>
 #include <kontur/forward_difference.hpp>
+#include <kontur/interpolation.hpp>
 #include <kontur/length.hpp>
 #include <kontur/nurbs.hpp>
 
@@ -26,12 +27,16 @@ void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 namespace kontur {
 namespace {
 
-TEST(RealTime, EvaluationSteppingAndInverseLengthDoNotAllocate) {
+TEST(RealTime, EvaluationSteppingInterpolationAndInverseLengthDoNotAllocate) {
   const NurbsCurve curve(testing::random_nurbs(testing::test_seed(), 3, {.min_degree = 3, .max_degree = 5}));
   const SpanPolynomialCurve spans(curve);
   const ArcLengthTable table(spans);
   ForwardDifferenceStepper plain(spans, (curve.u_max() - curve.u_min()) / 5000.0, Summation::plain);
   ForwardDifferenceStepper compensated(spans, (curve.u_max() - curve.u_min()) / 5000.0, Summation::compensated);
+  // Construction is planning and may allocate (the exact mode builds its arc-length table).
+  CurveInterpolator taylor1(spans, Interpolator::taylor_first_order);
+  CurveInterpolator taylor2(spans, Interpolator::taylor_second_order);
+  CurveInterpolator exact(spans, Interpolator::arc_length_exact);
   double sink = 0.0;
   const long before = g_allocations.load();
   for (int i = 0; i <= 1000; ++i) {
@@ -39,6 +44,8 @@ TEST(RealTime, EvaluationSteppingAndInverseLengthDoNotAllocate) {
     sink += curve.derivatives(u, 3)[3].x() + spans.derivatives(u, 3)[2].y();
     sink += table.u_of_s(table.length_mm() * i / 1000.0) + table.s_of_u(u);
   }
+  for (CurveInterpolator* ip : {&taylor1, &taylor2, &exact})
+    while (!ip->at_end()) sink += ip->advance(table.length_mm() / 3000.0);
   while (plain.step()) sink += plain.point().x();
   while (compensated.step()) sink += compensated.point().y();
   const long after = g_allocations.load();

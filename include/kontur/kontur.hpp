@@ -5,6 +5,7 @@
 #include <kontur/error.hpp>
 #include <kontur/forward_difference.hpp>
 #include <kontur/helix_arc.hpp>
+#include <kontur/interpolation.hpp>
 #include <kontur/io/curve_json.hpp>
 #include <kontur/length.hpp>
 #include <kontur/line_segment.hpp>

@@ -60,6 +60,9 @@ public:
   /// Parameter at arc length s [mm] (s clamped to [0, length]); relative accuracy 1e-13 of the
   /// length. Allocation-free.
   [[nodiscard]] double u_of_s(double s_mm) const noexcept;
+  /// The same, starting Newton from `u_hint` when it lies in the table interval of s (a good
+  /// prediction, e.g. a Taylor step, saves iterations).
+  [[nodiscard]] double u_of_s(double s_mm, double u_hint) const noexcept;
   /// Number of table intervals.
   [[nodiscard]] std::size_t intervals() const noexcept { return u_.size() - 1; }
   /// Evaluations of |C'| spent building the table.

@@ -22,3 +22,7 @@ kontur_cli_case(spline_seed_g06_2_inconsistent 1 "seed_g06_2_inconsistent\\.json
 kontur_cli_case(spline_missing_file 1 "no-such-curve\\.json: no such file" spline no-such-curve.json)
 kontur_cli_case(spline_not_json 1 "CMakeLists\\.txt:1:[0-9]+: not valid JSON" spline CMakeLists.txt)
 kontur_cli_case(spline_bad_step 1 "--step -1" spline examples/curves/seed_example1.json --step -1)
+kontur_cli_case(spline_feed_fluctuation 0 "taylor1 +2525 .*taylor2 +2525 .*exact +2525 +[0-9.]+e-1[0-9]" spline
+                examples/curves/seed_example2.json --feed 6000 --period 0.001)
+kontur_cli_case(spline_bad_period 1 "--period 0: must be in \\(0, 1\\]" spline examples/curves/seed_example1.json
+                --feed 100 --period 0)
