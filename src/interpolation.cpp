@@ -53,7 +53,7 @@ double CurveInterpolator::advance(double ds) noexcept {
       s_ = table_->length_mm();
       u_ = u_max;
     } else {
-      u_ = std::min(table_->u_of_s(s_, predicted), u_max);
+      u_ = std::min(table_->u_after(u_, s_ - ds, s_, predicted), u_max);
     }
   } else {
     u_ = std::min(predicted, u_max);

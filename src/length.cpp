@@ -231,3 +231,36 @@ double ArcLengthTable::u_of_s(double s, double u_hint) const noexcept {
 }
 
 }  // namespace kontur
+
+namespace kontur {
+
+double ArcLengthTable::u_after(double u_from, double s_from, double s_to, double u_hint) const noexcept {
+  const double total = s_.back();
+  if (s_to >= total) return u_.back();
+  const auto it = std::upper_bound(s_.begin(), s_.end(), s_to);
+  const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(it - s_.begin()) - 1, u_.size() - 2);
+  const double ua = u_[k], ub = u_[k + 1];
+  if (!(u_from >= ua && u_from < ub && s_from <= s_to)) return u_of_s(s_to, u_hint);
+  // Newton on F(u) = s_from + G7(u_from, u) - s_to, bracketed in [u_from, ub].
+  const double ds = s_to - s_from;
+  const double ftol = std::max(1e-12 * ds, tolerances::inverse_length_relative * 1e-2 * total);
+  double lo = u_from, hi = ub;
+  double u = (u_hint > lo && u_hint < hi) ? u_hint : lo + (hi - lo) * std::min(1.0, ds / std::max(s_[k + 1] - s_from, 1e-300));
+  for (int i = 0; i < tolerances::inverse_length_max_iterations; ++i) {
+    const double f = patterson_fixed(*curve_, u_from, u, 0) - ds;
+    if (std::abs(f) <= ftol) break;
+    if (f > 0.0) hi = u; else lo = u;
+    const double v = curve_->speed(u);
+    double next = (v > 0.0) ? u - f / v : 0.5 * (lo + hi);
+    if (next == u) break;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (hi - lo <= 4.0 * kEps * std::max(std::abs(lo), std::abs(hi))) {
+      u = next;
+      break;
+    }
+    u = next;
+  }
+  return u;
+}
+
+}  // namespace kontur
