@@ -16,4 +16,7 @@ enum ExitCode : int {
 /// `kontur spline FILE`: validate a curve, print its span polynomials, lengths, differences.
 void register_spline_command(CLI::App& app, int& exit_code);
 
+/// `kontur machine [FILE]`: validate a machine file and print the limits in use.
+void register_machine_command(CLI::App& app, int& exit_code);
+
 }  // namespace kontur::app

@@ -9,6 +9,7 @@
 #include <kontur/io/curve_json.hpp>
 #include <kontur/length.hpp>
 #include <kontur/line_segment.hpp>
+#include <kontur/machine.hpp>
 #include <kontur/nurbs.hpp>
 #include <kontur/span_polynomial.hpp>
 #include <kontur/tolerances.hpp>

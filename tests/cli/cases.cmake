@@ -26,3 +26,6 @@ kontur_cli_case(spline_feed_fluctuation 0 "taylor1 +2525 .*taylor2 +2525 .*exact
                 examples/curves/seed_example2.json --feed 6000 --period 0.001)
 kontur_cli_case(spline_bad_period 1 "--period 0: must be in \\(0, 1\\]" spline examples/curves/seed_example1.json
                 --feed 100 --period 0)
+kontur_cli_case(machine_default 0 "max_jerk = 50000" machine)
+kontur_cli_case(machine_linuxcnc_ini 0 "max_velocity = 203\\.2" machine ../shared/data/gcode/linuxcnc-tp/configs/XYZ.ini)
+kontur_cli_case(machine_missing_file 1 "nowhere\\.toml: no such file" machine nowhere.toml)
