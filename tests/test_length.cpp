@@ -109,6 +109,30 @@ TEST(LengthSimpsonRunge, PolylineWithC0KnotsConvergesToSumOfSides) {
   EXPECT_NEAR(length(spans), truth, 1e-12 * truth);
 }
 
+// Regression guard: a cusp inside a span (C'(1/3) = 0 for this Bezier: speed 3 |1 - 3t|
+// sqrt(2 + 2 t^2)) once cost 67 million evaluations and did not converge, because near the cusp
+// |C'| is mostly rounding noise and every panel failed a test relative to its own tiny value.
+// Reference: mpmath quad split at t = 1/3, 30 digits: 4.31485038209930340054.
+TEST(LengthGaussKronrod, CuspInsideASpanIsCheapAndExact) {
+  NurbsData d;
+  d.degree = 3;
+  d.knots = {0, 0, 0, 0, 1, 1, 1, 1};
+  d.points = {{0, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, -3, 0}};
+  const NurbsCurve curve(d);
+  const SpanPolynomialCurve spans(curve);
+  const double truth = 4.31485038209930340054;
+  for (const double tol : {1e-10, 1e-13}) {
+    const LengthResult r = gauss_kronrod_length(spans, tol);
+    EXPECT_TRUE(r.converged);
+    EXPECT_NEAR(r.length_mm, truth, std::max(tol, 1e-14) * truth);
+    EXPECT_LT(r.evaluations, 10000);
+  }
+  const ArcLengthTable table(spans);
+  EXPECT_NEAR(table.length_mm(), truth, 1e-13 * truth);
+  EXPECT_LT(table.intervals(), 200u);
+  EXPECT_NEAR(table.s_of_u(1.0 / 3.0), gauss_kronrod_length(spans, 0.0, 1.0 / 3.0, 1e-14).length_mm, 1e-13 * truth);
+}
+
 // The independent oracle: OpenCASCADE's GCPnts_AbscissaPoint::Length on 200+ random NURBS.
 TEST(LengthGaussKronrod, AgreesWithOpenCascadeOnRandomCurves) {
   const auto seed = testing::test_seed();

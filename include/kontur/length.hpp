@@ -65,7 +65,8 @@ public:
   [[nodiscard]] double u_of_s(double s_mm, double u_hint) const noexcept;
   /// Parameter at arc length s_to [mm], given a point (u_from, s_from) on the curve a short way
   /// before it (s_from <= s_to): when both lie in one table interval, Newton integrates only the
-  /// step from u_from (7-point Gauss), starting at `u_hint`; otherwise it is u_of_s(s_to, u_hint).
+  /// step from u_from (nested Gauss-Kronrod-Patterson rules up to the level where two agree),
+  /// starting at `u_hint`; otherwise it is u_of_s(s_to, u_hint).
   /// The stepping of a servo cycle. Allocation-free.
   [[nodiscard]] double u_after(double u_from, double s_from, double s_to, double u_hint) const noexcept;
   /// Number of table intervals.
