@@ -4,6 +4,7 @@
 #include <kontur/machine_limits.hpp>
 #include <kontur/tolerances.hpp>
 
+#include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include <algorithm>

@@ -6,6 +6,7 @@
 #include <kontur/tolerances.hpp>
 
 #include <Eigen/LU>
+#include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include <algorithm>
