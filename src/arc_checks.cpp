@@ -18,7 +18,7 @@ std::string point_name(std::size_t i) { return fmt::format("r{}", i + 1); }
 
 std::string format_point(const Vec3& p) {
   auto num = [](double v) { return v == 0.0 ? 0.0 : v; };  // no "-0"
-  return fmt::format("({}, {}, {})", num(p.x()), num(p.y()), num(p.z()));
+  return fmt::format("({:.12g}, {:.12g}, {:.12g})", num(p.x()), num(p.y()), num(p.z()));
 }
 
 void check_finite(std::span<const Vec3> points) {

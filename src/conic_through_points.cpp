@@ -202,7 +202,7 @@ ConicThroughPoints conic_through_points(const std::array<Vec3, 5>& r, const Coni
     Eigen::Matrix4d minor;
     for (int c = 0, m = 0; c < 5; ++c)
       if (c != col) minor.col(m++) = M.col(c);
-    co[static_cast<std::size_t>(col)] = ((col % 2 == 0) ? 1.0 : -1.0) * minor.determinant();
+    co[static_cast<std::size_t>(col)] = ((col % 2 == 0) ? 1.0 : -1.0) * minor.partialPivLu().determinant();
   }
   double big = 0.0;
   for (const double v : co) big = std::max(big, std::abs(v));

@@ -129,7 +129,8 @@ TEST(CircleArc, RandomCirclesInSpace) {
   for (std::uint64_t i = 0; i < count; ++i) {
     const double R = std::exp(uni(std::log(0.1), std::log(1000.0)));
     const Vec3 centre(uni(-1000, 1000), uni(-1000, 1000), uni(-1000, 1000));
-    const Eigen::Quaterniond rot = Eigen::Quaterniond::UnitRandom();
+    std::normal_distribution<double> n01;
+    const Eigen::Quaterniond rot = Eigen::Quaterniond(n01(rng), n01(rng), n01(rng), n01(rng)).normalized();
     const Eigen::Matrix3d Q = rot.toRotationMatrix();
     const double t0 = uni(0, 2 * pi), sweep = uni(0.2, 2 * pi - 0.2), f = uni(0.1, 0.9);
     auto on = [&](double t) { return Vec3(centre + Q * Vec3(R * std::cos(t), R * std::sin(t), 0.0)); };
