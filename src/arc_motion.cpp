@@ -77,7 +77,7 @@ SpeedVariation angular_speed_variation(const Curve& curve, const AngularTiming& 
 }
 
 ConstantFeedStepper::ConstantFeedStepper(const Curve& curve, const ArcLengthTable& table, const Vec3& end_point,
-                                         double feed_mm_min, double period_s, long max_periods)
+                                         double feed_mm_min, double period_s, long max_periods, long precompute_limit)
     : curve_(&curve), table_(&table), end_(end_point), feed_(feed_mm_min), period_(period_s), step_(0.0),
       length_(table.length_mm()), periods_(0) {
   if (!(std::isfinite(feed_mm_min) && feed_mm_min > 0.0))
@@ -92,6 +92,10 @@ ConstantFeedStepper::ConstantFeedStepper(const Curve& curve, const ArcLengthTabl
                      fmt::format("F = {} mm/min and T = {} s give {:.3g} setpoints for {:.6g} mm; at most {} are allowed",
                                  feed_mm_min, period_s, n, length_, max_periods));
   periods_ = std::max(1L, static_cast<long>(n));
+  if (periods_ <= precompute_limit) {
+    u_.resize(static_cast<std::size_t>(periods_));
+    for (long k = 0; k < periods_; ++k) u_[static_cast<std::size_t>(k)] = table.u_of_s(step_ * static_cast<double>(k));
+  }
 }
 
 MotionSample ConstantFeedStepper::sample(long k) const noexcept {
@@ -104,7 +108,7 @@ MotionSample ConstantFeedStepper::sample(long k) const noexcept {
     m.point = end_;
   } else {
     m.arc_mm = step_ * static_cast<double>(k);
-    m.u = table_->u_of_s(m.arc_mm);
+    m.u = u_.empty() ? table_->u_of_s(m.arc_mm) : u_[static_cast<std::size_t>(k)];
     m.point = curve_->point(m.u);
   }
   return m;

@@ -7,6 +7,8 @@
 #include <kontur/curve.hpp>
 #include <kontur/length.hpp>
 
+#include <vector>
+
 namespace kontur {
 
 /// The seed's problem types.
@@ -76,14 +78,16 @@ struct SpeedVariation {
 
 /// Kontur's mode: constant feed F [mm/min] along the arc, one setpoint per servo period T [s],
 /// s_k = min(k F T / 60, L), u_k = u(s_k) from the arc-length table; the last sample is the end
-/// point given by the user, reached after ceil(L / (F T / 60)) periods.
+/// point given by the user, reached after ceil(L / (F T / 60)) periods. Up to `precompute_limit`
+/// periods the parameters u_k are computed at construction (planning: one u_of_s each, a few
+/// microseconds), so that a sample is one curve evaluation; beyond it each sample calls u_of_s.
 class ConstantFeedStepper {
 public:
   /// Keeps references to the curve and the table, which must outlive the stepper. Throws
   /// InputError "feed-positive" or "period-positive" (not finite and > 0) and "too-many-periods"
   /// (more than max_periods setpoints).
   ConstantFeedStepper(const Curve& curve, const ArcLengthTable& table, const Vec3& end_point, double feed_mm_min,
-                      double period_s, long max_periods = 100'000'000);
+                      double period_s, long max_periods = 100'000'000, long precompute_limit = 1'000'000);
   /// Number of samples (periods + 1).
   [[nodiscard]] long samples() const noexcept { return periods_ + 1; }
   /// Path advance per period, F T / 60 [mm].
@@ -102,6 +106,7 @@ private:
   Vec3 end_;
   double feed_, period_, step_, length_;
   long periods_;
+  std::vector<double> u_;  // u_k for k < periods_, when precomputed
 };
 
 }  // namespace kontur
