@@ -364,6 +364,22 @@ TEST(ConicArcMotion, ConstantFeedAdvancesEqualArcLengths) {
   EXPECT_NEAR(feed.time_s(), table.length_mm() / 10.0, 1e-12);
 }
 
+TEST(ConicArcMotion, PlannedAndOnTheFlyConstantFeedAgree) {
+  const std::array<Vec3, 5> r{Vec3(96, 202.4, 303.2), Vec3(98, 200.6, 300.8), Vec3(100, 200, 300),
+                              Vec3(102, 200.6, 300.8), Vec3(106, 205.4, 307.2)};
+  const auto k = conic_through_points(r);
+  const ConicArc arc = k.curve();
+  const ArcLengthTable table(arc);
+  const ConstantFeedStepper planned(arc, table, r[4], 1000.0, 0.01);
+  const ConstantFeedStepper on_the_fly(arc, table, r[4], 1000.0, 0.01, 100'000'000, 0);
+  ASSERT_EQ(planned.samples(), on_the_fly.samples());
+  for (long i = 0; i < planned.samples(); ++i) {
+    EXPECT_EQ(planned.sample(i).u, on_the_fly.sample(i).u);
+    EXPECT_EQ(planned.sample(i).point, on_the_fly.sample(i).point);
+  }
+  EXPECT_EQ(planned.sample(planned.samples() - 1).point, r[4]);
+}
+
 TEST(ConicArcMotion, FocalAngleStepsVaryTheSpeed) {
   const std::array<Vec3, 5> r{Vec3(105, 200, 300), Vec3(104, 201.08, 301.44), Vec3(103, 201.44, 301.92),
                               Vec3(100, 201.8, 302.4), Vec3(96, 201.08, 301.44)};
