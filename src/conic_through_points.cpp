@@ -6,6 +6,7 @@
 #include <kontur/tolerances.hpp>
 
 #include <Eigen/LU>
+#include <Eigen/SVD>
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
@@ -234,27 +235,89 @@ ConicThroughPoints conic_through_points(const std::array<Vec3, 5>& r, const Coni
   // A', C' and U = (C' D'^2 + A' E'^2) / (4 A' C') are the same verdicts (U = disc / (4 lambda_axis)).
   const bool x_small = std::abs(Ar) <= std::abs(Cr);
   const double lam_small = x_small ? Ar : Cr, lam_big = x_small ? Cr : Ar;
-  const double ratio = lam_small / lam_big;  // |ratio| <= 1
-  ConicType type;
-  bool axis_is_x;  // focal axis along the rotated x axis
-  if (std::abs(ratio) <= tolerances::conic_parabola_relative) {
-    type = ConicType::parabola;
-    axis_is_x = x_small;
-  } else if (ratio > 0.0) {
-    type = (1.0 - ratio) <= tolerances::conic_circle_relative ? ConicType::circle : ConicType::ellipse;
-    axis_is_x = x_small;  // the major axis has the smaller coefficient
-  } else {
-    type = ConicType::hyperbola;
+  const double ratio = lam_small / lam_big;  // |ratio| <= 1; 1 - e^2 for an ellipse or hyperbola
+  ConicType type = ratio > 0.0 ? ConicType::ellipse : ConicType::hyperbola;
+  bool axis_is_x = x_small;  // focal axis along the rotated x axis (ellipse: the major axis)
+
+  // A parabola (e = 1) or a circle (e = 0) is a single value of a continuous parameter, which
+  // rounding never hits exactly. When 1 - e^2 or e^2 is small, the best parabola (circle) through
+  // r1 and r2..r5 is fitted (least squares: the smallest singular vector of a 4 x 3 system; the
+  // parabola's axis refined by two parabolic steps on sigma_min^2), and the conic is taken to be
+  // one when it passes within tolerances::conic_snap_fit_relative of the extent of the points.
+  std::array<Vec2, 4> pts2{};  // r2..r5 in scaled relative coordinates
+  for (std::size_t j = 0; j < 4; ++j) pts2[j] = Vec2(k.relative_points[j + 1].x() / s, k.relative_points[j + 1].y() / s);
+  auto refit = [&](auto&& row, double* sigma) {
+    Eigen::Matrix<double, 4, 3> P;
+    for (int j = 0; j < 4; ++j) P.row(j) = row(pts2[static_cast<std::size_t>(j)]).transpose();
+    const Eigen::JacobiSVD<Eigen::Matrix<double, 4, 3>> svd(P, Eigen::ComputeFullV);
+    if (sigma != nullptr) *sigma = svd.singularValues()(2);
+    return Eigen::Vector3d(svd.matrixV().col(2));
+  };
+  Vec2 axis_dir = axis_is_x ? dir_x : dir_y, trans_dir = axis_is_x ? dir_y : dir_x;
+  Eigen::Vector3d snap_w = Eigen::Vector3d::Zero();
+  if (std::abs(ratio) <= tolerances::conic_snap_candidate_relative) {
+    // lam_t X^2 + D_t X + D_a Y = 0 with the axis at angle alpha.
+    auto fit_at = [&](double alpha, double* sigma) {
+      const Vec2 ax(std::cos(alpha), std::sin(alpha)), tr(-std::sin(alpha), std::cos(alpha));
+      return refit([&](const Vec2& v) {
+        const double X = v.dot(tr), Y = v.dot(ax);
+        return Eigen::Vector3d(X * X, X, Y);
+      }, sigma);
+    };
+    double alpha = std::atan2(axis_dir.y(), axis_dir.x());
+    for (const double h : {1e-6, 1e-8}) {
+      double f0 = 0.0, fm = 0.0, fp = 0.0;
+      (void)fit_at(alpha, &f0);
+      (void)fit_at(alpha - h, &fm);
+      (void)fit_at(alpha + h, &fp);
+      f0 *= f0;
+      fm *= fm;
+      fp *= fp;
+      const double curvature = fp - 2.0 * f0 + fm;
+      if (curvature > 0.0) alpha -= h * (fp - fm) / (2.0 * curvature);
+    }
+    const Eigen::Vector3d w = fit_at(alpha, nullptr);
+    const Vec2 ax(std::cos(alpha), std::sin(alpha)), tr(-std::sin(alpha), std::cos(alpha));
+    double worst = 0.0;  // |f| / |grad f| at the points
+    for (const Vec2& v : pts2) {
+      const double X = v.dot(tr), Y = v.dot(ax);
+      worst = std::max(worst, std::abs(w(0) * X * X + w(1) * X + w(2) * Y) / std::hypot(2.0 * w(0) * X + w(1), w(2)));
+    }
+    if (worst <= tolerances::conic_snap_fit_relative) {
+      type = ConicType::parabola;
+      axis_dir = ax;
+      trans_dir = tr;
+      snap_w = w;
+    }
+  } else if (ratio > 0.0 && 1.0 - ratio <= tolerances::conic_snap_candidate_relative) {
+    // lam (x^2 + y^2) + D x + E y = 0 in the relative frame.
+    const Eigen::Vector3d w = refit([](const Vec2& v) { return Eigen::Vector3d(v.squaredNorm(), v.x(), v.y()); }, nullptr);
+    double worst = 0.0;
+    for (const Vec2& v : pts2)
+      worst = std::max(worst, std::abs(w(0) * v.squaredNorm() + w(1) * v.x() + w(2) * v.y()) /
+                                  std::hypot(2.0 * w(0) * v.x() + w(1), 2.0 * w(0) * v.y() + w(2)));
+    if (worst <= tolerances::conic_snap_fit_relative) {
+      type = ConicType::circle;
+      snap_w = w;
+    }
+  }
+  if (type == ConicType::hyperbola) {
     // The focal (transverse) axis is the one the curve meets: disc = D_a^2 + D_t^2 lam_a / lam_t > 0.
     const double disc_x = Dr * Dr + Er * Er * Ar / Cr, disc_y = Er * Er + Dr * Dr * Cr / Ar;
     if (std::max(disc_x, disc_y) <= tolerances::conic_degenerate_relative) throw_degenerate("two intersecting lines");
     axis_is_x = disc_x > disc_y;
+    axis_dir = axis_is_x ? dir_x : dir_y;
+    trans_dir = axis_is_x ? dir_y : dir_x;
   }
   double lam_a = axis_is_x ? Ar : Cr, lam_t = axis_is_x ? Cr : Ar;
-  const double D_a = axis_is_x ? Dr : Er, D_t = axis_is_x ? Er : Dr;
-  const Vec2 axis_dir = axis_is_x ? dir_x : dir_y, trans_dir = axis_is_x ? dir_y : dir_x;
+  double D_a = axis_is_x ? Dr : Er, D_t = axis_is_x ? Er : Dr;
   double one_minus_e2 = lam_a / lam_t;
-  if (type == ConicType::parabola) lam_a = one_minus_e2 = 0.0;
+  if (type == ConicType::parabola) {
+    lam_a = one_minus_e2 = 0.0;
+    lam_t = snap_w(0);
+    D_t = snap_w(1);
+    D_a = snap_w(2);
+  }
   if (type == ConicType::circle) one_minus_e2 = 1.0;
 
   k.type = type;
@@ -267,8 +330,7 @@ ConicThroughPoints conic_through_points(const std::array<Vec3, 5>& r, const Coni
   if (type == ConicType::circle) {
     // e ~ 0: the focus is the centre and the axis direction is arbitrary; the seed's theta = 0
     // case puts the polar axis along the relative X axis.
-    const double lam = 0.5 * (Ar + Cr);
-    centre2 = -0.5 * (Dr / lam) * dir_x - 0.5 * (Er / lam) * dir_y;
+    centre2 = Vec2(-0.5 * snap_w(1) / snap_w(0), -0.5 * snap_w(2) / snap_w(0));
     p = centre2.norm();  // the circle passes through r1, the origin
     e = 0.0;
     focus2 = centre2;

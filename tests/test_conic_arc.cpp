@@ -159,6 +159,27 @@ TEST(ConicArc, DerivativesMatchFiniteDifferences) {
   }
 }
 
+// Near a parabola or a circle, but measurably not one: no snapping.
+TEST(ConicArc, NearlyParabolicAndNearlyCircularEllipsesStayEllipses) {
+  auto fit = [](double a, double b, double t0, double t1) {
+    std::array<Vec3, 5> r;
+    for (int j = 0; j < 5; ++j) {
+      const double t = t0 + (t1 - t0) * j / 4.0;
+      r[static_cast<std::size_t>(j)] = to_space(a * std::cos(t), b * std::sin(t));
+    }
+    return conic_through_points(r);
+  };
+  // 1 - e^2 = b^2 / a^2 = 1e-7, near the vertex (x = a): close to the parabola y^2 = 2 p (a - x).
+  const double a = 1e4, b = a * std::sqrt(1e-7);
+  const auto k1 = fit(a, b, -0.0057, 0.0057);  // 0.16 mm along the axis, 0.036 mm across
+  EXPECT_EQ(k1.type, ConicType::ellipse);
+  EXPECT_NEAR(1 - k1.eccentricity * k1.eccentricity, 1e-7, 1e-12);
+  // e^2 = 1e-8: b / a = 1 - 5e-9.
+  const auto k2 = fit(10.0, 10.0 * std::sqrt(1 - 1e-8), 0.3, 2.5);
+  EXPECT_EQ(k2.type, ConicType::ellipse);
+  EXPECT_NEAR(k2.eccentricity, 1e-4, 1e-6);
+}
+
 // ---- seeded random conics in space
 
 struct Generated {

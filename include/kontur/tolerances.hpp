@@ -46,12 +46,12 @@ inline constexpr double arc_collinear_relative = 1e-9;
 /// Default largest distance of r4 and r5 from the plane of r1, r2, r3, times the extent. The user
 /// may give a looser absolute tolerance (part programs round coordinates to 1e-3 or 1e-4 mm).
 inline constexpr double conic_coplanar_relative = 1e-9;
-/// A conic is a circle when e^2 = 1 - lambda_axis / lambda_transverse is below this (the circle
-/// then passes within about this times its radius of the five points).
-inline constexpr double conic_circle_relative = 1e-10;
-/// A conic is a parabola when |1 - e^2| = |lambda_axis / lambda_transverse| is below this (the
-/// parabola then passes within about this times the extent of the five points).
-inline constexpr double conic_parabola_relative = 1e-10;
+/// When e^2 (= 1 - lambda_axis / lambda_transverse) or |1 - e^2| of the fitted conic is below
+/// this, the best circle or parabola through the points is fitted too ...
+inline constexpr double conic_snap_candidate_relative = 1e-6;
+/// ... and the conic is a circle or a parabola when that curve passes within this times the
+/// extent of the five points (rounding of exact data gives about 1e-15).
+inline constexpr double conic_snap_fit_relative = 1e-11;
 /// A conic is degenerate (a pair of lines or a point) when the discriminant that gives its
 /// vertices, relative to its terms, is below this.
 inline constexpr double conic_degenerate_relative = 1e-12;
