@@ -231,8 +231,9 @@ ConicThroughPoints conic_through_points(const std::array<Vec3, 5>& r, const Coni
   // parabola (and every digit of the vertex is lost before). Kontur writes the conic about the
   // vertex nearest to r1, which stays finite for all three types:
   //   X^2 = 2 p xi - (1 - e^2) xi^2,   1 - e^2 = lambda_axis / lambda_transverse,
-  // and classifies by 1 - e^2 with relative tolerances (parabola, circle); the seed's signs of
-  // A', C' and U = (C' D'^2 + A' E'^2) / (4 A' C') are the same verdicts (U = disc / (4 lambda_axis)).
+  // and classifies by the sign of 1 - e^2 (ellipse, hyperbola) and by fitting the parabola or
+  // circle when it is nearly one (below); the seed's signs of A', C' and
+  // U = (C' D'^2 + A' E'^2) / (4 A' C') are the same verdicts (U = disc / (4 lambda_axis)).
   const bool x_small = std::abs(Ar) <= std::abs(Cr);
   const double lam_small = x_small ? Ar : Cr, lam_big = x_small ? Cr : Ar;
   const double ratio = lam_small / lam_big;  // |ratio| <= 1; 1 - e^2 for an ellipse or hyperbola
