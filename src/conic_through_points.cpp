@@ -6,7 +6,7 @@
 #include <kontur/tolerances.hpp>
 
 #include <Eigen/LU>
-#include <Eigen/SVD>
+#include <Eigen/QR>
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
@@ -247,23 +247,35 @@ ConicThroughPoints conic_through_points(const std::array<Vec3, 5>& r, const Coni
   // one when it passes within tolerances::conic_snap_fit_relative of the extent of the points.
   std::array<Vec2, 4> pts2{};  // r2..r5 in scaled relative coordinates
   for (std::size_t j = 0; j < 4; ++j) pts2[j] = Vec2(k.relative_points[j + 1].x() / s, k.relative_points[j + 1].y() / s);
-  auto refit = [&](auto&& row, double* sigma) {
+  // Least squares P w ~ 0 with the component `pivot` of w (the largest of the estimate) set to 1:
+  // a 4 x 2 Householder QR solve. sigma: |P w| / |w|.
+  auto refit = [&](auto&& row, int pivot, double* sigma) {
     Eigen::Matrix<double, 4, 3> P;
     for (int j = 0; j < 4; ++j) P.row(j) = row(pts2[static_cast<std::size_t>(j)]).transpose();
-    const Eigen::JacobiSVD<Eigen::Matrix<double, 4, 3>> svd(P, Eigen::ComputeFullV);
-    if (sigma != nullptr) *sigma = svd.singularValues()(2);
-    return Eigen::Vector3d(svd.matrixV().col(2));
+    Eigen::Matrix<double, 4, 2> Q2;
+    for (int c = 0, m = 0; c < 3; ++c)
+      if (c != pivot) Q2.col(m++) = P.col(c);
+    const Eigen::Vector2d x = Q2.householderQr().solve(-P.col(pivot));
+    Eigen::Vector3d w;
+    for (int c = 0, m = 0; c < 3; ++c) w(c) = c == pivot ? 1.0 : x(m++);
+    if (sigma != nullptr) *sigma = (P * w).norm() / w.norm();
+    return w;
+  };
+  auto largest = [](double a0, double a1, double a2) {
+    const double m0 = std::abs(a0), m1 = std::abs(a1), m2 = std::abs(a2);
+    return m0 >= m1 && m0 >= m2 ? 0 : (m1 >= m2 ? 1 : 2);
   };
   Vec2 axis_dir = axis_is_x ? dir_x : dir_y, trans_dir = axis_is_x ? dir_y : dir_x;
   Eigen::Vector3d snap_w = Eigen::Vector3d::Zero();
   if (std::abs(ratio) <= tolerances::conic_snap_candidate_relative) {
     // lam_t X^2 + D_t X + D_a Y = 0 with the axis at angle alpha.
+    const int pivot = axis_is_x ? largest(Cr, Er, Dr) : largest(Ar, Dr, Er);
     auto fit_at = [&](double alpha, double* sigma) {
       const Vec2 ax(std::cos(alpha), std::sin(alpha)), tr(-std::sin(alpha), std::cos(alpha));
       return refit([&](const Vec2& v) {
         const double X = v.dot(tr), Y = v.dot(ax);
         return Eigen::Vector3d(X * X, X, Y);
-      }, sigma);
+      }, pivot, sigma);
     };
     double alpha = std::atan2(axis_dir.y(), axis_dir.x());
     for (const double h : {1e-6, 1e-8}) {
@@ -292,7 +304,8 @@ ConicThroughPoints conic_through_points(const std::array<Vec3, 5>& r, const Coni
     }
   } else if (ratio > 0.0 && 1.0 - ratio <= tolerances::conic_snap_candidate_relative) {
     // lam (x^2 + y^2) + D x + E y = 0 in the relative frame.
-    const Eigen::Vector3d w = refit([](const Vec2& v) { return Eigen::Vector3d(v.squaredNorm(), v.x(), v.y()); }, nullptr);
+    const Eigen::Vector3d w = refit([](const Vec2& v) { return Eigen::Vector3d(v.squaredNorm(), v.x(), v.y()); },
+                                    largest(0.5 * (A + C), D, E), nullptr);
     double worst = 0.0;
     for (const Vec2& v : pts2)
       worst = std::max(worst, std::abs(w(0) * v.squaredNorm() + w(1) * v.x() + w(2) * v.y()) /
