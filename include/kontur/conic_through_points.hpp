@@ -82,7 +82,8 @@ struct ConicThroughPoints {
   double plane_tolerance_mm = 0.0;       ///< the tolerance it was checked against [mm]
 
   // ---- equation in the relative frame: A x^2 + B xy + C y^2 + D x + E y = 0 (F = 0, r1 the origin)
-  /// A, B, C [1/mm^2 scale], D, E [1/mm scale], by cofactors, scaled so that max(|A|,|B|,|C|) = 1 / extent^2.
+  /// A, B, C, D, E by cofactors (x, y in mm), normalised so that the largest of |A| s^2, |B| s^2,
+  /// |C| s^2, |D| s, |E| s is 1 (s the extent [mm]).
   std::array<double, 5> coefficients{};
   /// Seed's rotation theta with cot 2 theta = (A - C) / B, in [0, pi/2) [rad] (0 when B = 0).
   double rotation_rad = 0.0;
