@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <memory>
 #include <numbers>
 
@@ -119,7 +120,9 @@ void run_arc(const ArcOptions& o) {
   fmt::print("T^-1 (machine -> relative):\n{}", matrix_text(c.to_relative));
   fmt::print("\nrelative coordinates [mm] (origin r0, x' towards r1, z' along n)\n");
   for (std::size_t j = 0; j < 3; ++j) fmt::print("  r{} = {}\n", j + 1, point_fixed(c.relative_points[j]));
-  fmt::print("\nangles: theta12 = {}, theta13 = {}\n", angle_text(c.theta12_rad), angle_text(c.theta13_rad));
+  fmt::print("\n|r0 rj| = R; cos theta12 = {}, cos theta13 = {}\n", fixed(std::cos(c.theta12_rad), 10),
+             fixed(std::cos(c.theta13_rad), 10));
+  fmt::print("angles: theta12 = {}, theta13 = {}\n", angle_text(c.theta12_rad), angle_text(c.theta13_rad));
   fmt::print("direction: counter-clockwise about n ({} seen from +z)\n", seen_from_z);
   fmt::print("arc angle theta = {}, length l = R theta = {} mm\n", angle_text(c.sweep_rad), num(c.length_mm));
   if (timing) {
