@@ -18,10 +18,13 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("kontur ") + kontur::version_string);
   app.require_subcommand(1);
   app.footer("Example:\n  kontur spline examples/curves/seed_example1.json --step 0.05\n"
+             "  kontur arc 110,100,50 100,110,50 90,100,50 --omega 0.5 --steps 4\n"
              "Run `kontur SUBCOMMAND --help` for the options of each subcommand.");
   int exit_code = exit_ok;
   register_spline_command(app, exit_code);
   register_machine_command(app, exit_code);
+  register_arc_command(app, exit_code);
+  register_conic_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
