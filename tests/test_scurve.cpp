@@ -34,7 +34,7 @@ TEST(Scurve, VelocityChangeFormulas) {
   // reachable_velocity inverts the distance.
   const PathLimits l{200.0, 500.0, 1e4};
   const double v = reachable_velocity(5.0, 3.0, l);
-  EXPECT_NEAR(velocity_change_distance(5.0, v, 500, 1e4), 3.0, 1e-12);
+  EXPECT_NEAR(velocity_change_distance(5.0, v, 500, 1e4), 3.0, 1e-11);
   EXPECT_EQ(reachable_velocity(5.0, 1e6, l), 200.0);
 }
 
@@ -83,6 +83,30 @@ TEST(Scurve, LimitsContinuityAndExactEndOnRandomMoves) {
     ASSERT_NEAR(e.a, 0.0, 2 * l.max_jerk * eps_t + 1e-6 * l.max_acceleration) << at;
     const PathState end = p.sample(T);
     ASSERT_EQ(end.s, h) << at;
+  }
+}
+
+}  // namespace
+}  // namespace kontur::plan
+
+namespace kontur::plan {
+namespace {
+
+// Regression guard: with zero acceleration at both ends, slowing from 88 to 43.2 mm/s needs more
+// room than stopping from 88 (a = 1956.5 mm/s^2, j = 31928 mm/s^3); the look-ahead once assumed
+// that rest after its window was the most conservative case and streamed a move 0.8 mm/s too fast.
+TEST(Scurve, BrakingDistanceIsNotMonotoneButTheBrakingBoundIs) {
+  const PathLimits l{126.6, 1956.5, 31928.0};
+  EXPECT_GT(velocity_change_distance(43.2, 88.0, l.max_acceleration, l.max_jerk),
+            velocity_change_distance(0.0, 88.0, l.max_acceleration, l.max_jerk));
+  double previous = 0.0;
+  for (double v_after = 0.0; v_after <= 120.0; v_after += 0.5) {
+    const double b = braking_velocity(v_after, 4.886, l);
+    EXPECT_GE(b, previous - 1e-9) << "v_after " << v_after;  // monotone
+    previous = b;
+    // From the bound every end speed in [v_after, b] is reachable within the distance.
+    for (double w = v_after; w <= b; w += 0.25)
+      EXPECT_LE(velocity_change_distance(w, b, l.max_acceleration, l.max_jerk), 4.886 * (1 + 1e-9));
   }
 }
 

@@ -30,6 +30,11 @@ Change change_phases(double va, double vb, double amax, double jmax) noexcept {
 
 constexpr int kBisections = 200;  // bounded; stops earlier when the interval cannot shrink
 
+// Distances that agree to rounding count as equal: speeds handed from one plan to the next may
+// differ in the last bits, and a braking distance 1e-16 mm over the move's length must not turn
+// a feasible stop into an arrival at speed.
+bool fits(double needed, double distance) noexcept { return needed <= distance * (1.0 + 1e-12) + 1e-15; }
+
 }  // namespace
 
 double velocity_change_time(double va, double vb, double amax, double jmax) noexcept {
@@ -43,12 +48,32 @@ double velocity_change_distance(double va, double vb, double amax, double jmax) 
 
 double reachable_velocity(double v_from, double distance, const PathLimits& l) noexcept {
   if (!(distance > 0.0)) return v_from;
-  if (velocity_change_distance(v_from, l.max_velocity, l.max_acceleration, l.max_jerk) <= distance) return l.max_velocity;
+  if (fits(velocity_change_distance(v_from, l.max_velocity, l.max_acceleration, l.max_jerk), distance)) return l.max_velocity;
   double lo = v_from, hi = l.max_velocity;
   for (int i = 0; i < kBisections; ++i) {
     const double mid = 0.5 * (lo + hi);
     if (!(mid > lo && mid < hi)) break;
-    if (velocity_change_distance(v_from, mid, l.max_acceleration, l.max_jerk) <= distance) lo = mid; else hi = mid;
+    if (fits(velocity_change_distance(v_from, mid, l.max_acceleration, l.max_jerk), distance)) lo = mid; else hi = mid;
+  }
+  return lo;
+}
+
+double braking_velocity(double v_after, double distance, const PathLimits& l) noexcept {
+  const double a = l.max_acceleration, j = l.max_jerk;
+  // The longest braking from v to any end speed in [v_after, v].
+  auto worst = [&](double v) {
+    double d = velocity_change_distance(v_after, v, a, j);
+    for (const double w : {v / 3.0, a * a / (2.0 * j)})
+      if (w > v_after && w < v) d = std::max(d, velocity_change_distance(w, v, a, j));
+    return d;
+  };
+  if (!(distance > 0.0)) return v_after;
+  if (fits(worst(l.max_velocity), distance)) return l.max_velocity;
+  double lo = v_after, hi = l.max_velocity;
+  for (int i = 0; i < kBisections; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi)) break;
+    if (fits(worst(mid), distance)) lo = mid; else hi = mid;
   }
   return lo;
 }
@@ -82,13 +107,15 @@ ScurveProfile plan_scurve(double distance, double v0, double v1, const PathLimit
   // speed too high to brake to v1 keeps v1 at the lowest speed reachable by braking.
   if (v1 > v0) v1 = std::min(v1, reachable_velocity(v0, distance, l));
   if (v0 > v1) v1 = std::max(v1, [&] {
-    // lowest speed reachable from v0 by braking within the distance
-    if (velocity_change_distance(0.0, v0, amax, jmax) <= distance) return 0.0;
+    // Lowest speed reachable from v0 by braking within the distance. The braking distance is
+    // not monotone near 0 (ending at rest needs the last jerk phase): it falls with the end speed
+    // above about a^2 / 2j and rises below; the bisection below stays right in both parts.
+    if (fits(velocity_change_distance(0.0, v0, amax, jmax), distance)) return 0.0;
     double lo = 0.0, hi = v0;
     for (int i = 0; i < kBisections; ++i) {
       const double mid = 0.5 * (lo + hi);
       if (!(mid > lo && mid < hi)) break;
-      if (velocity_change_distance(mid, v0, amax, jmax) <= distance) hi = mid; else lo = mid;
+      if (fits(velocity_change_distance(mid, v0, amax, jmax), distance)) hi = mid; else lo = mid;
     }
     return hi;
   }());
@@ -99,14 +126,14 @@ ScurveProfile plan_scurve(double distance, double v0, double v1, const PathLimit
   const double floor_v = std::max(v0, v1);
   double vp = vmax;
   double cruise = 0.0;
-  if (needed(vmax) <= distance) {
-    cruise = vmax > 0.0 ? (distance - needed(vmax)) / vmax : 0.0;
+  if (fits(needed(vmax), distance)) {
+    cruise = vmax > 0.0 ? std::max(0.0, distance - needed(vmax)) / vmax : 0.0;
   } else {
     double lo = floor_v, hi = vmax;
     for (int i = 0; i < kBisections; ++i) {
       const double mid = 0.5 * (lo + hi);
       if (!(mid > lo && mid < hi)) break;
-      if (needed(mid) <= distance) lo = mid; else hi = mid;
+      if (fits(needed(mid), distance)) lo = mid; else hi = mid;
     }
     vp = lo;
     // What the changes leave of the distance (rounding, or the floor when v0 -> v1 alone is

@@ -33,6 +33,14 @@ struct PathState {
 /// v_from within that distance. Used by the look-ahead.
 [[nodiscard]] double reachable_velocity(double v_from, double distance, const PathLimits& limits) noexcept;
 
+/// The largest speed [mm/s] (capped at limits.max_velocity) from which braking to EVERY speed in
+/// [v_after, that speed] fits in `distance`. With zero acceleration at both ends the braking
+/// distance is not monotone in the end speed (stopping from 88 mm/s can take less room than
+/// slowing to 43 mm/s: the lower average speed wins); it peaks at an end speed of v/3 (no
+/// acceleration limit reached) or a^2 / 2j. The look-ahead brakes with this bound, so that
+/// assuming rest after its window is the most conservative assumption.
+[[nodiscard]] double braking_velocity(double v_after, double distance, const PathLimits& limits) noexcept;
+
 /// A planned profile. Built by plan_scurve; sample() is noexcept and allocation-free.
 class ScurveProfile {
 public:
