@@ -109,12 +109,21 @@ TEST(MoveLimits, MotionOnAnAxisTheMachineLacksIsRefusedBySpeedZero) {
   EXPECT_EQ(move_limits({&y, 10.0, 100.0}, mc).max_velocity, 0.0);
 }
 
-TEST(JunctionLimit, TangentCornerAndReversal) {
-  const Machine mc = default_machine();
-  EXPECT_TRUE(std::isinf(junction_limit(Vec3::UnitX(), Vec3::UnitX(), mc)));
-  const double corner = junction_limit(Vec3::UnitX(), Vec3::UnitY(), mc);
-  EXPECT_NEAR(corner, 50000.0 * 1e-6, 1e-12);  // J T^2 / 1
-  EXPECT_NEAR(junction_limit(Vec3::UnitX(), -Vec3::UnitX(), mc), 50000.0 * 1e-6 / 2, 1e-12);
+Derivatives direction(const Vec3& t, const Vec3& curvature_vector = Vec3::Zero()) {
+  Derivatives d;
+  d[1] = t;
+  d[2] = curvature_vector;  // |C'| = 1: C'' across t is the curvature vector
+  return d;
+}
+
+TEST(JunctionLimit, TangentCornerReversalAndCurvatureJump) {
+  const Machine mc = default_machine();  // J = 50000 mm/s^3, T = 1 ms
+  EXPECT_TRUE(std::isinf(junction_limit(direction(Vec3::UnitX()), direction(Vec3::UnitX()), mc)));
+  EXPECT_NEAR(junction_limit(direction(Vec3::UnitX()), direction(Vec3::UnitY()), mc), 50000.0 * 1e-6, 1e-12);
+  EXPECT_NEAR(junction_limit(direction(Vec3::UnitX()), direction(-Vec3::UnitX()), mc), 50000.0 * 1e-6 / 2, 1e-12);
+  // Line into a tangent arc of radius 20: v^2 / R <= J T.
+  EXPECT_NEAR(junction_limit(direction(Vec3::UnitX()), direction(Vec3::UnitX(), Vec3(0, 1.0 / 20, 0)), mc),
+              std::sqrt(50000.0 * 1e-3 * 20), 1e-9);
 }
 
 }  // namespace

@@ -4,7 +4,9 @@
 #include <kontur/forward_difference.hpp>
 #include <kontur/interpolation.hpp>
 #include <kontur/length.hpp>
+#include <kontur/line_segment.hpp>
 #include <kontur/nurbs.hpp>
+#include <kontur/plan/motion_planner.hpp>
 
 #include "support/random_curves.hpp"
 
@@ -51,6 +53,27 @@ TEST(RealTime, EvaluationSteppingInterpolationAndInverseLengthDoNotAllocate) {
   const long after = g_allocations.load();
   EXPECT_EQ(after - before, 0) << "allocations in the per-cycle path";
   EXPECT_TRUE(std::isfinite(sink));
+}
+
+}  // namespace
+}  // namespace kontur
+
+namespace kontur {
+namespace {
+
+TEST(RealTime, SamplingSetpointsDoesNotAllocate) {
+  plan::MotionPlanner planner(default_machine());
+  // Planning (allocates): a polyline of 50 moves and a NURBS, all pushed and finished first.
+  for (int i = 0; i < 50; ++i)
+    planner.push({std::make_shared<LineSegment>(Vec3(i, (i % 2) * 0.5, 0), Vec3(i + 1, ((i + 1) % 2) * 0.5, 0)), 80.0, false, i});
+  planner.finish();
+  plan::Setpoint sp;
+  long n = 0;
+  const long before = g_allocations.load();
+  while (planner.next(sp)) ++n;
+  EXPECT_EQ(g_allocations.load() - before, 0) << "allocations while sampling " << n << " setpoints";
+  EXPECT_TRUE(planner.done());
+  EXPECT_GT(n, 100);
 }
 
 }  // namespace

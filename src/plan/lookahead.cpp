@@ -118,16 +118,28 @@ PathLimits move_limits(const MoveGeometry& move, const Machine& machine, int sam
   return l;
 }
 
-double junction_limit(const Vec3& tangent_in, const Vec3& tangent_out, const Machine& machine) noexcept {
-  const Vec3 dt = tangent_out - tangent_in;
-  if (dt.norm() <= 1e-9) return kInf;
+namespace {
+
+// Curvature vector kappa n = (C'' - (C''.t) t) / |C'|^2 [1/mm].
+Vec3 curvature_vector(const Derivatives& d) noexcept {
+  const double v2 = d[1].squaredNorm();
+  if (!(v2 > 0.0)) return Vec3::Zero();
+  const Vec3 t = d[1] / std::sqrt(v2);
+  return (d[2] - d[2].dot(t) * t) / v2;
+}
+
+}  // namespace
+
+double junction_limit(const Derivatives& end_in, const Derivatives& start_out, const Machine& machine) noexcept {
+  const Vec3 dt = unit_tangent(start_out) - unit_tangent(end_in);
+  const Vec3 dk = curvature_vector(start_out) - curvature_vector(end_in);
   double v = kInf;
   const double T = machine.servo_period_s;
   for (const AxisLimits& axis : machine.axes) {
     if (axis.rotary) continue;
     const int i = axis.name == 'X' ? 0 : axis.name == 'Y' ? 1 : 2;
-    const double jump = std::abs(dt[i]);
-    if (jump > 0.0) v = std::min(v, axis.max_jerk * T * T / jump);
+    if (std::abs(dt[i]) > 1e-9) v = std::min(v, axis.max_jerk * T * T / std::abs(dt[i]));
+    if (std::abs(dk[i]) > 1e-9) v = std::min(v, std::sqrt(axis.max_jerk * T / std::abs(dk[i])));
   }
   return v;
 }

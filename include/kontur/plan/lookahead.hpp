@@ -6,6 +6,7 @@
 #include <kontur/machine.hpp>
 #include <kontur/plan/scurve.hpp>
 
+#include <algorithm>
 #include <deque>
 #include <span>
 #include <vector>
@@ -35,6 +36,11 @@ public:
 
   /// Appends a move.
   void push(const MoveConstraint& move);
+  /// Lowers the end speed limit of the last move pushed (the junction with the move that
+  /// follows, known only when that one arrives).
+  void limit_last_end_velocity(double v) noexcept {
+    if (!window_.empty()) window_.back().max_end_velocity = std::min(window_.back().max_end_velocity, v);
+  }
   /// No more moves: the last one ends at rest.
   void finish() noexcept { finished_ = true; }
   /// True when the oldest move's profile is final.
@@ -65,10 +71,14 @@ struct MoveGeometry {
 /// share (half on curves). Sampled at `samples` points along the curve.
 [[nodiscard]] PathLimits move_limits(const MoveGeometry& move, const Machine& machine, int samples = 64);
 
-/// The largest speed [mm/s] through the junction of two moves: unbounded (the smaller cap) where
-/// the tangents agree to 1e-9; otherwise the speed whose direction change within one servo period
-/// keeps each axis's jerk, as a finite difference of the setpoints sees it, within its limit
-/// (v |t1 - t2|_axis <= J_axis T^2), which is a near stop at a real corner.
-[[nodiscard]] double junction_limit(const Vec3& tangent_in, const Vec3& tangent_out, const Machine& machine) noexcept;
+/// The largest speed [mm/s] through the junction of two moves, from the end of the first
+/// (`end_in`: point and derivatives, as the limit from the left) and the start of the second.
+/// Setpoints a servo period T apart see a change of direction as a velocity jump, and a change of
+/// curvature as an acceleration jump, within one period; each axis's jerk (as a finite difference
+/// of the setpoints sees it) stays within its limit when v |t1 - t2|_axis <= J_axis T^2 and
+/// v^2 |k1 - k2|_axis <= J_axis T, with k = kappa n the curvature vector. A real corner is then a
+/// near stop; where tangent and curvature agree to 1e-9 there is no limit (infinity).
+[[nodiscard]] double junction_limit(const Derivatives& end_in, const Derivatives& start_out,
+                                    const Machine& machine) noexcept;
 
 }  // namespace kontur::plan

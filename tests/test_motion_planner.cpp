@@ -1,0 +1,129 @@
+// Moves to setpoints: the limits hold on the setpoints themselves (finite differences), the path
+// is continuous, corners are slow, tangent junctions are not, and the end is reached exactly.
+#include <gtest/gtest.h>
+#include <kontur/helix_arc.hpp>
+#include <kontur/line_segment.hpp>
+#include <kontur/plan/motion_planner.hpp>
+
+#include <cmath>
+#include <numbers>
+
+namespace kontur::plan {
+namespace {
+
+struct RunResult {
+  std::vector<Setpoint> points;
+};
+
+RunResult run(const Machine& m, const std::vector<MoveInput>& moves) {
+  MotionPlanner planner(m);
+  RunResult r;
+  Setpoint sp;
+  for (const auto& mv : moves) {
+    planner.push(mv);
+    while (planner.next(sp)) r.points.push_back(sp);
+  }
+  planner.finish();
+  while (planner.next(sp)) r.points.push_back(sp);
+  EXPECT_TRUE(planner.done());
+  return r;
+}
+
+// Largest per-axis velocity, acceleration and jerk of the setpoints (backward differences),
+// relative to the machine's limits; 1 means at the limit.
+struct Usage {
+  double v = 0, a = 0, j = 0;
+};
+Usage usage(const RunResult& r, const Machine& m) {
+  Usage u;
+  const double T = m.servo_period_s;
+  const auto& p = r.points;
+  for (std::size_t k = 3; k < p.size(); ++k) {
+    for (int i = 0; i < 3; ++i) {
+      const AxisLimits& ax = m.axes[static_cast<std::size_t>(i)];
+      const double x0 = p[k].position[i], x1 = p[k - 1].position[i], x2 = p[k - 2].position[i], x3 = p[k - 3].position[i];
+      u.v = std::max(u.v, std::abs(x0 - x1) / T / ax.max_velocity);
+      u.a = std::max(u.a, std::abs(x0 - 2 * x1 + x2) / (T * T) / ax.max_acceleration);
+      u.j = std::max(u.j, std::abs(x0 - 3 * x1 + 3 * x2 - x3) / (T * T * T) / ax.max_jerk);
+    }
+  }
+  return u;
+}
+
+MoveInput line(Vec3 a, Vec3 b, double feed, long line_no = 0) {
+  return {std::make_shared<LineSegment>(a, b), feed, false, line_no};
+}
+
+TEST(MotionPlanner, SingleLineStartsAndEndsAtRestAtTheEndPoints) {
+  const Machine m = default_machine();
+  const RunResult r = run(m, {line({0, 0, 0}, {100, 0, 0}, 50.0, 7)});
+  ASSERT_GT(r.points.size(), 100u);
+  EXPECT_EQ(r.points.front().position, Vec3(0, 0, 0));
+  EXPECT_EQ(r.points.back().position, Vec3(100, 0, 0));
+  EXPECT_EQ(r.points.back().v_mm_s, 0.0);
+  EXPECT_EQ(r.points.front().source_line, 7);
+  double vmax = 0;
+  for (const auto& p : r.points) vmax = std::max(vmax, p.v_mm_s);
+  EXPECT_NEAR(vmax, 50.0, 1e-9);
+  // Rest-to-rest with the speed reached: T = h / v + v / a + a / j (+ at most one period).
+  const double expected = 100.0 / 50 + 50.0 / 2000 + 2000.0 / 50000;
+  EXPECT_NEAR(r.points.back().t_s, expected, m.servo_period_s * 1.01);
+  const Usage u = usage(r, m);
+  EXPECT_LE(u.v, 1.0 + 1e-6);
+  EXPECT_LE(u.a, 1.0 + 1e-6);
+  EXPECT_LE(u.j, 1.0 + 1e-6);
+}
+
+TEST(MotionPlanner, SquareCornersAreTakenWithinTheLimits) {
+  const Machine m = default_machine();
+  const double F = 150.0;
+  const RunResult r = run(m, {line({0, 0, 0}, {50, 0, 0}, F), line({50, 0, 0}, {50, 50, 0}, F),
+                        line({50, 50, 0}, {0, 50, 0}, F), line({0, 50, 0}, {0, 0, 0}, F)});
+  const Usage u = usage(r, m);
+  EXPECT_LE(u.v, 1.0 + 1e-6);
+  EXPECT_LE(u.a, 1.0 + 1e-6);
+  EXPECT_LE(u.j, 1.0 + 1e-6);
+  // Each corner is passed: some setpoint within a hair of it, at a crawl.
+  for (const Vec3& corner : {Vec3(50, 0, 0), Vec3(50, 50, 0), Vec3(0, 50, 0)}) {
+    double best = 1e9, v_there = 0;
+    for (const auto& p : r.points)
+      if ((p.position - corner).norm() < best) {
+        best = (p.position - corner).norm();
+        v_there = p.v_mm_s;
+      }
+    EXPECT_LT(best, 1e-3);
+    EXPECT_LT(v_there, 1.0);
+  }
+  EXPECT_EQ(r.points.back().position, Vec3(0, 0, 0));
+}
+
+TEST(MotionPlanner, TangentLineArcLineKeepsItsSpeed) {
+  Machine m = default_machine();
+  const double R = 20.0;
+  CircleFrame f;
+  f.centre = {50, R, 0};
+  f.e1 = {0, -1, 0};
+  f.e2 = {1, 0, 0};  // n = e1 x e2 = (0, 0, 1)
+  const auto arc = std::make_shared<HelixArc>(f, R, std::numbers::pi / 2);
+  const Vec3 arc_end = arc->point(1.0);
+  const RunResult r = run(m, {line({0, 0, 0}, {50, 0, 0}, 100.0), {arc, 100.0, false, 2},
+                        line(arc_end, arc_end + Vec3(0, 50, 0), 100.0)});
+  // Through both tangent junctions the speed stays up (no stop).
+  double v_min_mid = 1e9;
+  for (const auto& p : r.points)
+    if (p.t_s > 0.3 && p.t_s < r.points.back().t_s - 0.3) v_min_mid = std::min(v_min_mid, p.v_mm_s);
+  // Except where the curvature jumps (v^2 / R <= J T: sqrt(50000 * 0.001 * 20) = 31.6 mm/s).
+  EXPECT_GT(v_min_mid, 30.0);
+  const Usage u = usage(r, m);
+  EXPECT_LE(u.v, 1.0 + 1e-6);
+  EXPECT_LE(u.a, 1.0 + 1e-6);
+  EXPECT_LE(u.j, 1.0 + 1e-6);
+  // On the arc every setpoint is on the circle.
+  for (const auto& p : r.points)
+    if (p.source_line == 2) {
+      EXPECT_NEAR((p.position - f.centre).norm(), R, 1e-9);
+    }
+}
+
+}  // namespace
+}  // namespace kontur::plan
