@@ -1,0 +1,149 @@
+#include <kontur/verify/checker.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace kontur::verify {
+namespace {
+
+constexpr double kRelative = 1e-6;  // limits may be met, not exceeded by more than this
+
+// Closest parameter on a curve to p, near u_hint: coarse sampling of [lo, hi], then Newton on
+// (C(u) - p) . C'(u) = 0, bracketed.
+double project(const Curve& c, const Vec3& p, double lo, double hi) {
+  double best_u = lo, best_d = (c.point(lo) - p).squaredNorm();
+  const int n = 64;
+  for (int k = 1; k <= n; ++k) {
+    const double u = lo + (hi - lo) * k / n;
+    const double d = (c.point(u) - p).squaredNorm();
+    if (d < best_d) {
+      best_d = d;
+      best_u = u;
+    }
+  }
+  double a = std::max(lo, best_u - (hi - lo) / n), b = std::min(hi, best_u + (hi - lo) / n);
+  double u = best_u;
+  for (int i = 0; i < 50; ++i) {
+    const Derivatives d = c.derivatives(u, 2);
+    const Vec3 r = d[0] - p;
+    const double f = r.dot(d[1]), fp = d[1].squaredNorm() + r.dot(d[2]);
+    if (f > 0.0) b = u; else a = u;
+    double next = fp > 0.0 ? u - f / fp : 0.5 * (a + b);
+    if (!(next > a && next < b)) next = 0.5 * (a + b);
+    if (std::abs(next - u) <= 1e-15 * std::max(1.0, std::abs(u))) {
+      u = next;
+      break;
+    }
+    u = next;
+  }
+  return u;
+}
+
+}  // namespace
+
+bool Report::passed(const Machine& machine) const noexcept {
+  return finite && uniform_time && max_velocity_ratio <= 1 + kRelative && max_acceleration_ratio <= 1 + kRelative &&
+         max_jerk_ratio <= 1 + kRelative && max_path_error_mm <= 1e-6 &&
+         max_chord_error_mm <= machine.chord_tolerance_mm * (1 + kRelative) && start_error_mm <= 1e-9 &&
+         end_error_mm <= 1e-9;
+}
+
+std::vector<std::string> Report::failures(const Machine& machine) const {
+  std::vector<std::string> f;
+  if (!finite) f.push_back("a setpoint is NaN or infinite");
+  if (!uniform_time) f.push_back("the setpoints are not one servo period apart");
+  auto limit = [&](const char* what, double r, char axis) {
+    if (r > 1 + kRelative) f.push_back(fmt::format("{} of axis {} at {:.6f} times its limit", what, axis, r));
+  };
+  limit("velocity", max_velocity_ratio, worst_velocity_axis);
+  limit("acceleration", max_acceleration_ratio, worst_acceleration_axis);
+  limit("jerk", max_jerk_ratio, worst_jerk_axis);
+  if (max_path_error_mm > 1e-6) f.push_back(fmt::format("a setpoint is {:.3g} mm off the path", max_path_error_mm));
+  if (max_chord_error_mm > machine.chord_tolerance_mm * (1 + kRelative))
+    f.push_back(fmt::format("a chord is {:.3g} mm off the path (tolerance {} mm)", max_chord_error_mm,
+                            machine.chord_tolerance_mm));
+  if (start_error_mm > 1e-9) f.push_back(fmt::format("the first setpoint is {:.3g} mm from the start", start_error_mm));
+  if (end_error_mm > 1e-9) f.push_back(fmt::format("the last setpoint is {:.3g} mm from the end", end_error_mm));
+  return f;
+}
+
+Report check(const std::vector<Sample>& s, const std::vector<PathMove>& moves, const Machine& machine) {
+  Report r;
+  r.samples = static_cast<long>(s.size());
+  const double T = machine.servo_period_s;
+  for (const Sample& p : s) r.finite = r.finite && std::isfinite(p.t_s) && p.position.allFinite();
+  if (!r.finite || s.empty() || moves.empty()) return r;
+  // Time and finite differences on each axis.
+  for (std::size_t k = 1; k < s.size(); ++k)
+    if (std::abs((s[k].t_s - s[k - 1].t_s) - T) > 1e-9 * T + 4e-16 * std::abs(s[k].t_s)) r.uniform_time = false;
+  for (const AxisLimits& ax : machine.axes) {
+    if (ax.rotary) continue;
+    const int i = ax.name == 'X' ? 0 : ax.name == 'Y' ? 1 : 2;
+    for (std::size_t k = 1; k < s.size(); ++k) {
+      const double v = std::abs(s[k].position[i] - s[k - 1].position[i]) / T / ax.max_velocity;
+      if (v > r.max_velocity_ratio) {
+        r.max_velocity_ratio = v;
+        r.worst_velocity_axis = ax.name;
+      }
+      if (k >= 2) {
+        const double a = std::abs(s[k].position[i] - 2 * s[k - 1].position[i] + s[k - 2].position[i]) / (T * T) / ax.max_acceleration;
+        if (a > r.max_acceleration_ratio) {
+          r.max_acceleration_ratio = a;
+          r.worst_acceleration_axis = ax.name;
+        }
+      }
+      if (k >= 3) {
+        const double j = std::abs(s[k].position[i] - 3 * s[k - 1].position[i] + 3 * s[k - 2].position[i] - s[k - 3].position[i]) /
+                         (T * T * T) / ax.max_jerk;
+        if (j > r.max_jerk_ratio) {
+          r.max_jerk_ratio = j;
+          r.worst_jerk_axis = ax.name;
+        }
+      }
+    }
+  }
+  // Path: the start and end, each setpoint's distance from its move, each chord's bow.
+  const Curve& first = *moves.front().curve;
+  const Curve& last = *moves.back().curve;
+  r.start_error_mm = (s.front().position - first.point(first.u_min())).norm();
+  r.end_error_mm = (s.back().position - last.point(last.u_max())).norm();
+  // Each setpoint lies on the current move or a later one (setpoints never go back); the next
+  // move takes over once it is at least as close (a setpoint may skip a move shorter than a cycle).
+  std::size_t m = 0;
+  double u_prev = moves[0].curve->u_min();
+  std::size_t m_prev = 0;
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    const Curve* c = moves[m].curve;
+    double u = project(*c, s[k].position, c->u_min(), c->u_max());
+    double d = (c->point(u) - s[k].position).norm();
+    for (std::size_t n = m + 1; n < moves.size() && n <= m + 8; ++n) {
+      const Curve& cn = *moves[n].curve;
+      const double un = project(cn, s[k].position, cn.u_min(), cn.u_max());
+      const double dn = (cn.point(un) - s[k].position).norm();
+      if (dn < d || (dn <= d && un > cn.u_min())) {
+        m = n;
+        c = &cn;
+        u = un;
+        d = dn;
+      }
+    }
+    r.max_path_error_mm = std::max(r.max_path_error_mm, d);
+    if (k > 0 && m == m_prev && u > u_prev) {
+      // The bow of the path between the two setpoints from their chord.
+      const Vec3 a = s[k - 1].position, b = s[k].position, ab = b - a;
+      const double len2 = ab.squaredNorm();
+      for (int q = 1; q < 8; ++q) {
+        const Vec3 p = c->point(u_prev + (u - u_prev) * q / 8.0) - a;
+        const double t = len2 > 0.0 ? std::clamp(p.dot(ab) / len2, 0.0, 1.0) : 0.0;
+        r.max_chord_error_mm = std::max(r.max_chord_error_mm, (p - t * ab).norm());
+      }
+    }
+    u_prev = u;
+    m_prev = m;
+  }
+  return r;
+}
+
+}  // namespace kontur::verify
