@@ -10,11 +10,16 @@
 #include <kontur/helix_arc.hpp>
 #include <kontur/interpolation.hpp>
 #include <kontur/io/curve_json.hpp>
+#include <kontur/io/setpoint_writer.hpp>
 #include <kontur/length.hpp>
 #include <kontur/line_segment.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/machine_limits.hpp>
 #include <kontur/nurbs.hpp>
+#include <kontur/plan/lookahead.hpp>
+#include <kontur/plan/motion_planner.hpp>
+#include <kontur/plan/scurve.hpp>
 #include <kontur/span_polynomial.hpp>
 #include <kontur/tolerances.hpp>
+#include <kontur/verify/checker.hpp>
 #include <kontur/version.hpp>

@@ -1,0 +1,53 @@
+#include <kontur/io/setpoint_writer.hpp>
+
+#include <fmt/format.h>
+
+#include <array>
+#include <bit>
+#include <cstring>
+
+namespace kontur {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "the binary setpoint format is written on little-endian hosts");
+
+template <class T>
+void put(std::ostream& out, T v) {
+  std::array<char, sizeof(T)> b;
+  std::memcpy(b.data(), &v, sizeof(T));
+  out.write(b.data(), static_cast<std::streamsize>(b.size()));
+}
+
+}  // namespace
+
+SetpointWriter::SetpointWriter(std::ostream& out, SetpointFormat format, double period_s) : out_(&out), format_(format) {
+  if (format_ == SetpointFormat::csv) {
+    *out_ << "t,x,y,z,v,block\n";
+  } else {
+    out_->write(setpoint_binary_magic, 8);
+    put<std::uint32_t>(*out_, setpoint_binary_version);
+    put<std::uint32_t>(*out_, 48);
+    put<double>(*out_, period_s);
+  }
+}
+
+void SetpointWriter::write(const plan::Setpoint& s) {
+  ++count_;
+  if (format_ == SetpointFormat::binary) {
+    put<double>(*out_, s.t_s);
+    put<double>(*out_, s.position.x());
+    put<double>(*out_, s.position.y());
+    put<double>(*out_, s.position.z());
+    put<double>(*out_, s.v_mm_s);
+    put<std::int64_t>(*out_, s.source_line);
+    return;
+  }
+  // -0 is written as 0 so that equal runs give equal bytes.
+  auto z = [](double v) { return v == 0.0 ? 0.0 : v; };
+  fmt::memory_buffer b;
+  fmt::format_to(std::back_inserter(b), "{:.9f},{:.9f},{:.9f},{:.9f},{:.6f},{}\n", z(s.t_s), z(s.position.x()),
+                 z(s.position.y()), z(s.position.z()), z(s.v_mm_s), s.source_line);
+  out_->write(b.data(), static_cast<std::streamsize>(b.size()));
+}
+
+}  // namespace kontur
