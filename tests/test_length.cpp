@@ -133,6 +133,31 @@ TEST(LengthGaussKronrod, CuspInsideASpanIsCheapAndExact) {
   EXPECT_NEAR(table.s_of_u(1.0 / 3.0), gauss_kronrod_length(spans, 0.0, 1.0 / 3.0, 1e-14).length_mm, 1e-13 * truth);
 }
 
+// Regression guard: weights 1e-4..1e4 (and 1e-6..1e6) make the quotient rule cancel large terms,
+// so |C'| carries rounding noise far above eps |C'| and no tolerance near 1e-13 is reachable; the
+// integrator once bisected that noise for 740 million evaluations (25 s) and still did not
+// converge. It now detects the round-off, stops and says so (not converged), with the length
+// still accurate. References by tools/reference_weighted_nurbs.py (mpmath, 50 digits); on the
+// same curve OpenCASCADE's GCPnts_AbscissaPoint::Length returns 40.934 for w = 1e6 (21 % off).
+TEST(LengthGaussKronrod, HeavilyWeightedNurbs) {
+  for (const auto& [w, truth] : {std::pair{1e4, 52.034912281094772425}, std::pair{1e6, 52.03446296503609302}}) {
+    NurbsData d;
+    d.degree = 3;
+    d.knots = {0, 0, 0, 0, 0.3, 0.6, 1, 1, 1, 1};
+    d.points = {{0, 0, 0}, {10, 5, 0}, {20, -5, 0}, {30, 10, 0}, {40, 0, 0}, {50, 3, 0}};
+    d.weights = {1, w, 1, 1 / w, w, 1};
+    const NurbsCurve curve(d);
+    const SpanPolynomialCurve spans(curve);
+    const LengthResult direct = gauss_kronrod_length(curve);
+    const LengthResult power = gauss_kronrod_length(spans);
+    EXPECT_NEAR(direct.length_mm, truth, 1e-10 * truth) << "w = " << w;  // measured 1.2e-14, 1.7e-11
+    EXPECT_NEAR(power.length_mm, truth, 1e-9 * truth) << "w = " << w;  // measured 1.1e-12, 3.0e-10
+    EXPECT_LT(direct.evaluations, 100000);
+    EXPECT_LT(power.evaluations, 100000);
+    EXPECT_LT(ArcLengthTable(spans).intervals(), 1000u);
+  }
+}
+
 // The independent oracle: OpenCASCADE's GCPnts_AbscissaPoint::Length on 200+ random NURBS.
 TEST(LengthGaussKronrod, AgreesWithOpenCascadeOnRandomCurves) {
   const auto seed = testing::test_seed();
