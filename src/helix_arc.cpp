@@ -1,6 +1,8 @@
 #include <kontur/error.hpp>
 #include <kontur/helix_arc.hpp>
 
+#include <Eigen/Geometry>
+
 #include <fmt/format.h>
 
 #include <algorithm>

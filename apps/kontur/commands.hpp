@@ -15,5 +15,7 @@ enum ExitCode : int {
 
 /// `kontur spline FILE`: validate a curve, print its span polynomials, lengths, differences.
 void register_spline_command(CLI::App& app, int& exit_code);
+/// `kontur check PROGRAM`: validate a G-code program, print its blocks and totals.
+void register_check_command(CLI::App& app, int& exit_code);
 
 }  // namespace kontur::app
