@@ -409,7 +409,7 @@ struct Reader::Impl {
     if (spline != Spline::none && continue_spline()) return;
     if (spline == Spline::g62) finish_g62();
     if (circle_pending && !(has_axes() && w.g_count == 0 && w.keyword == Keyword::none)) {
-      fail(circle_loc.column, "circle-end-missing",
+      fail(block_column(), "circle-end-missing",
            fmt::format("{}: end point block missing: a 3-D circle takes two blocks (intermediate point, then the "
                        "end point with X Y Z alone)",
                        g_name(circle_g, true)));
@@ -1071,7 +1071,11 @@ struct Reader::Impl {
       }
     (void)to;
     circle_pending = false;
+    // the circle is the block of its first line: report its errors there
+    const long this_line = line_no;
+    line_no = ctx.line = circle_loc.line;
     emit_circle(circle_mid, end_point, circle_loc.column, g_name(circle_g, true));
+    line_no = ctx.line = this_line;
   }
   Vec3 indexed_point(int point) const {
     Vec3 p = pos;
