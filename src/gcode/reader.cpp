@@ -1076,6 +1076,7 @@ struct Reader::Impl {
     line_no = ctx.line = circle_loc.line;
     emit_circle(circle_mid, end_point, circle_loc.column, g_name(circle_g, true));
     line_no = ctx.line = this_line;
+    queue.back().location = circle_loc;
   }
   Vec3 indexed_point(int point) const {
     Vec3 p = pos;
