@@ -64,6 +64,13 @@ inline constexpr int gcode_max_arc_turns = 10000;
 inline constexpr int gcode_max_cycle_repeats = 10000;
 /// Largest number of control points of one spline block (G06.2, G5.2): bounds the memory of the reader.
 inline constexpr int gcode_max_spline_points = 100000;
+/// Largest number of moves one canned-cycle block may expand into (repeats L times pecks).
+inline constexpr int gcode_max_cycle_moves = 100000;
+/// Largest coordinate, offset, radius or distance a program may reach [mm] (1 km): beyond it a
+/// program is in error, which keeps every length and point finite.
+inline constexpr double gcode_max_coordinate_mm = 1e6;
+/// Largest feed F [mm/min or 1/min], dwell [s] and NURBS weight or knot magnitude a program may give.
+inline constexpr double gcode_max_value = 1e9;
 /// Largest number of pecks of one G73 / G83 hole (Q too small for the depth is an error).
 inline constexpr int gcode_max_pecks = 10000;
 

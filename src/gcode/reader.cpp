@@ -316,7 +316,18 @@ struct Reader::Impl {
     b.location = location(column);
     return b;
   }
-  void emit(Block&& b) { queue.push_back(std::move(b)); }
+  void emit(Block&& b) {
+    check_point(b.start, b.location.column);
+    check_point(b.end, b.location.column);
+    for (int i = 0; i < b.via_count; ++i) check_point(b.via[static_cast<std::size_t>(i)], b.location.column);
+    queue.push_back(std::move(b));
+  }
+  void check_point(const Vec3& p, int column) const {
+    const double m = tolerances::gcode_max_coordinate_mm;
+    if (!(p.allFinite() && p.cwiseAbs().maxCoeff() <= m))
+      fail(column, "coordinate-range",
+           fmt::format("the point {} mm is beyond the supported range of +-{} mm", point_text(p), num(m)));
+  }
   int block_column() const { return w.first_column > 0 ? w.first_column : 1; }
 
   // The axis words X Y Z of the block as a target in program coordinates [mm].
@@ -404,7 +415,28 @@ struct Reader::Impl {
   }
 
   // ================================================================ block execution
+  void check_values() const {
+    // ---- every value within the supported range (keeps all geometry finite)
+    for (int c = 0; c < 26; ++c) {
+      const char letter = static_cast<char>('A' + c);
+      if (letter == 'G' || letter == 'M' || !w.has(letter)) continue;
+      const double v = w.get(letter);
+      const bool length_word = std::strchr("XYZIJKRQ", letter) != nullptr;
+      const double limit = length_word ? tolerances::gcode_max_coordinate_mm : tolerances::gcode_max_value;
+      if (!(std::abs(v) <= limit))
+        fail(w.col(letter), "value-range", fmt::format("{}{}: beyond the supported range +-{}", letter, num(v), num(limit)));
+    }
+    for (int p = 0; p < 3; ++p)
+      for (int a = 0; a < 3; ++a)
+        if (w.has_indexed(p, a) &&
+            !(std::abs(w.indexed[static_cast<std::size_t>(p)][static_cast<std::size_t>(a)]) <= tolerances::gcode_max_coordinate_mm))
+          fail(w.indexed_column[static_cast<std::size_t>(p)][static_cast<std::size_t>(a)], "value-range",
+               fmt::format("{}{}=: beyond the supported range", static_cast<char>('I' + a), p + 1));
+
+  }
+
   void execute() {
+    check_values();
     // A block that continues a spline being collected.
     if (spline != Spline::none && continue_spline()) return;
     if (spline == Spline::g62) finish_g62();
@@ -1167,6 +1199,12 @@ struct Reader::Impl {
       const double pecks = (r_plane - bottom) / cycle_q;
       if (pecks > tolerances::gcode_max_pecks)
         fail(w.has('Q') ? w.col('Q') : col, "cycle-peck", fmt::format("{}: Q {} mm gives more than {} pecks", word, num(cycle_q), tolerances::gcode_max_pecks));
+    }
+    {
+      const double pecks = (motion == 730 || motion == 830) ? std::ceil((r_plane - bottom) / cycle_q) : 1.0;
+      if (repeats * (pecks * 3.0 + 4.0) > tolerances::gcode_max_cycle_moves)
+        fail(col, "cycle-repeat", fmt::format("{}: L{} holes of {} pecks expand into more than {} moves", word, repeats,
+                                              num(pecks), tolerances::gcode_max_cycle_moves));
     }
     const double clear_z = modal.retract == RetractMode::initial_z ? std::max(cycle_old_z, r_plane) : r_plane;
     auto rapid_to = [&](const Vec3& p) {
