@@ -1,0 +1,35 @@
+// libFuzzer target for the G-code reader: any bytes are a program; reading it must end with blocks
+// or an InputError, never a crash, hang, leak, sanitizer report, or a non-finite point or length.
+// Built with clang -fsanitize=fuzzer,address,undefined by fuzz/CMakeLists.txt (docs/gcode.md).
+#include <kontur/error.hpp>
+#include <kontur/gcode/reader.hpp>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <string>
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  std::string text(reinterpret_cast<const char*>(data), size);
+  try {
+    kontur::gcode::Reader reader("fuzz.ngc", std::move(text));
+    kontur::gcode::Block b;
+    long blocks = 0;
+    while (reader.next(b) && ++blocks < 200000) {
+      if (!b.start.allFinite() || !b.end.allFinite()) std::abort();
+      // lengths of lines and arcs are closed forms; NURBS lengths integrate (bounded by the curve's spans)
+      if (blocks < 2000) {
+        const auto len = b.length_mm();
+        if (len && !std::isfinite(*len)) std::abort();
+      }
+      if (const kontur::Curve* c = b.curve()) {
+        const kontur::Vec3 mid = c->point(0.5 * (c->u_min() + c->u_max()));
+        if (!mid.allFinite()) std::abort();
+      }
+    }
+  } catch (const kontur::InputError&) {
+    // a malformed program: the expected outcome for most inputs
+  }
+  return 0;
+}
