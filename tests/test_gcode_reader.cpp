@@ -326,6 +326,25 @@ TEST(GcodeReader, ProgramEndsAtM2AndWarnsWithoutIt) {
   EXPECT_EQ(r2.warning_count(), 1u);
 }
 
+TEST(GcodeReader, UnusedWordsWarnAndTheRunGoesOn) {
+  Reader r("t.ngc", "F100\nG1 X10 R5\nG96 S100 M3\nM2\n");
+  Block b;
+  int n = 0;
+  while (r.next(b)) ++n;
+  EXPECT_EQ(n, 1);
+  ASSERT_EQ(r.warning_count(), 2u);
+  EXPECT_EQ(r.warnings()[0], "t.ngc:2:8: warning: R5: not used by any code of this block (ignored)");
+  EXPECT_NE(r.warnings()[1].find("G96: constant surface speed is recorded"), std::string::npos);
+}
+
+TEST(GcodeReader, NothingAfterAnError) {
+  Reader r("t.ngc", "F100\nG1 X1\nG1 X[1/0]\nG1 X3\n");
+  Block b;
+  ASSERT_TRUE(r.next(b));
+  EXPECT_THROW(r.next(b), InputError);
+  EXPECT_FALSE(r.next(b));
+}
+
 TEST(GcodeExpression, OperatorsFunctionsAndPrecedence) {
   ParameterTable p;
   p.set_named("XSCALE", 2.0);

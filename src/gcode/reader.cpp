@@ -135,6 +135,7 @@ struct Reader::Impl {
   std::string memory;
   std::vector<char> buf;
   std::size_t begin = 0, end = 0;
+  std::size_t buffer_offset = 0;  // bytes of the file before buf[0]
   bool input_eof = false;
   long line_no = 0;
 
@@ -228,6 +229,7 @@ struct Reader::Impl {
     if (input_eof || !file) return;
     if (begin > 0) {
       std::memmove(buf.data(), buf.data() + begin, end - begin);
+      buffer_offset += begin;
       end -= begin;
       begin = 0;
     }
@@ -242,9 +244,8 @@ struct Reader::Impl {
     const char* d = data();
     const void* z = std::memchr(d + from, 0, end - from);
     if (z) {
-      const auto offset = static_cast<const char*>(z) - d;
-      throw InputError("not-text", fmt::format("{}: not a text file (NUL byte at byte {} of the buffer read near line {})",
-                                               *name, offset, line_no + 1));
+      const auto offset = buffer_offset + static_cast<std::size_t>(static_cast<const char*>(z) - d);
+      throw InputError("not-text", fmt::format("{}: not a text file (NUL byte at offset {})", *name, offset));
     }
   }
   bool read_line(std::string_view& out) {
@@ -662,10 +663,38 @@ struct Reader::Impl {
       }
     }
 
+    warn_unused_words(motion, nonmodal, group_code[g_path], group_code[g_tool_length], axes_for_motion || starts_motion);
+
     // ---- program end
     if (m_code[m_stop] == 2 || m_code[m_stop] == 30) {
       program_end_seen = true;
       end_program();
+    }
+  }
+
+  // A word that no code of the block uses is ignored with a warning (a control would raise an
+  // alarm for some; the specification asks for a warning).
+  void warn_unused_words(int motion, int nonmodal, int path, int tool_length, bool moved) {
+    std::string used = "FSTN";  // always meaningful
+    auto add = [&](const char* letters) { used += letters; };
+    const bool cycle = motion == 730 || motion == 810 || motion == 820 || motion == 830;
+    if (moved || nonmodal == 100 || nonmodal == 280 || nonmodal == 300 || nonmodal == 920) add("XYZ");
+    if (moved) {
+      if (motion == 20 || motion == 30) add("IJKRP");
+      if (motion == 50 || motion == 51) add("IJPQ");
+      if (motion == 52) add("PL");
+      if (motion == 62) add("KRPQ");
+      if (cycle) add("RZPQL");
+    }
+    if (cycle) add("RPQL");  // sticky cycle words on a block without a hole
+    if (nonmodal == 40) add("P");
+    if (nonmodal == 100) add("LPR");
+    if (path == 640) add("PQ");
+    if (tool_length == 430) add("H");
+    for (int c = 0; c < 26; ++c) {
+      const char letter = static_cast<char>('A' + c);
+      if (letter == 'G' || letter == 'M' || !w.has(letter) || used.find(letter) != std::string::npos) continue;
+      warn(w.col(letter), fmt::format("{}{}: not used by any code of this block (ignored)", letter, num(w.get(letter))));
     }
   }
 
@@ -1322,14 +1351,21 @@ bool Reader::next(Block& out) {
     r.queue.clear();
     r.head = 0;
     if (r.ended) return false;
-    std::string_view raw;
-    if (!r.read_line(raw)) {
-      r.end_program();
-      if (!r.program_end_seen && !r.tape)
-        r.warn(1, "the program ends without M2, M30 or '%'");
-      continue;
+    try {
+      std::string_view raw;
+      if (!r.read_line(raw)) {
+        r.ended = true;
+        r.end_program();
+        if (!r.program_end_seen && !r.tape) r.warn(1, "the program ends without M2, M30 or '%'");
+        continue;
+      }
+      r.process_line(raw);
+    } catch (...) {
+      r.ended = true;  // after an error the reader hands out nothing more
+      r.queue.clear();
+      r.head = 0;
+      throw;
     }
-    r.process_line(raw);
   }
   out = std::move(r.queue[r.head++]);
   return true;
