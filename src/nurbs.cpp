@@ -161,12 +161,28 @@ double NurbsCurve::extent() const noexcept {
   return (hi - lo).norm();
 }
 
+int NurbsCurve::find_span_left(double u) const noexcept {
+  int i = find_span(u);
+  while (i > data_.degree && u == data_.knots[static_cast<std::size_t>(i)]) --i;
+  // Skip empty spans (repeated knots) down to the one that ends at u.
+  while (i > data_.degree && data_.knots[static_cast<std::size_t>(i)] == data_.knots[static_cast<std::size_t>(i + 1)]) --i;
+  return i;
+}
+
 Derivatives NurbsCurve::derivatives(double u, int order) const noexcept {
+  u = std::clamp(u, u_min(), u_max());
+  return evaluate(u, find_span(u), order);
+}
+
+Derivatives NurbsCurve::derivatives_left(double u, int order) const noexcept {
+  u = std::clamp(u, u_min(), u_max());
+  return evaluate(u, find_span_left(u), order);
+}
+
+Derivatives NurbsCurve::evaluate(double u, int span, int order) const noexcept {
   const int p = data_.degree;
   const auto& U = data_.knots;
   order = std::clamp(order, 0, tolerances::max_derivative);
-  u = std::clamp(u, u_min(), u_max());
-  const int span = find_span(u);
   const int nd = std::min(order, p);
 
   // Basis functions and their derivatives (Piegl & Tiller, algorithm A2.3), fixed-size scratch.
@@ -232,6 +248,13 @@ Derivatives NurbsCurve::derivatives(double u, int order) const noexcept {
   }
   // Rational derivatives (A4.2): C^(k) = (A^(k) - sum_{i=1..k} binom(k,i) w^(i) C^(k-i)) / w.
   Derivatives out;
+  if (!rational_) {
+    // Equal weights cancel: the weight's derivatives are zero in exact arithmetic, so the
+    // quotient rule would only add rounding noise (e.g. a non-zero third derivative of a
+    // quadratic).
+    for (int k = 0; k <= nd; ++k) out[k] = A[k] / W[0];
+    return out;
+  }
   static constexpr double binom[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1, 3, 3, 1}};
   for (int k = 0; k <= order; ++k) {
     Vec3 v = (k <= nd) ? A[k] : Vec3::Zero();

@@ -133,6 +133,13 @@ Derivatives SpanPolynomialCurve::derivatives(double u, int order) const noexcept
   return spans_[span_index(u)].derivatives(u, order);
 }
 
+Derivatives SpanPolynomialCurve::derivatives_left(double u, int order) const noexcept {
+  u = std::clamp(u, u_min(), u_max());
+  std::size_t i = span_index(u);
+  if (i > 0 && u == spans_[i].u_start) --i;
+  return spans_[i].derivatives(u, order);
+}
+
 std::vector<double> SpanPolynomialCurve::breakpoints() const {
   std::vector<double> b;
   b.reserve(spans_.size() + 1);

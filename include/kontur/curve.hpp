@@ -29,6 +29,13 @@ public:
   [[nodiscard]] virtual double u_max() const noexcept = 0;
   /// Point and derivatives up to `order` (0..3) at u; u is clamped to the range. Never allocates.
   [[nodiscard]] virtual Derivatives derivatives(double u, int order) const noexcept = 0;
+  /// Point and derivatives as the limit from the left at u. Differs from derivatives() only at
+  /// a breakpoint where the curve is not smooth (a C0 knot): there derivatives() gives the
+  /// right-hand piece and this the left-hand one, so that a piece [a, b] is integrated with its
+  /// own derivative at b.
+  [[nodiscard]] virtual Derivatives derivatives_left(double u, int order) const noexcept {
+    return derivatives(u, order);
+  }
   /// Parameter values where the curve may be less smooth (span boundaries), sorted, including
   /// u_min and u_max. Length and u(s) integrate piece by piece between them.
   [[nodiscard]] virtual std::vector<double> breakpoints() const = 0;
@@ -37,6 +44,8 @@ public:
   [[nodiscard]] Vec3 point(double u) const noexcept { return derivatives(u, 0)[0]; }
   /// Parametric speed |C'(u)| [mm per parameter unit].
   [[nodiscard]] double speed(double u) const noexcept { return derivatives(u, 1)[1].norm(); }
+  /// Parametric speed as the limit from the left (see derivatives_left).
+  [[nodiscard]] double speed_left(double u) const noexcept { return derivatives_left(u, 1)[1].norm(); }
 
 protected:
   Curve() = default;

@@ -32,8 +32,11 @@ enum class SimpsonScheme {
                                                 double relative_tolerance = tolerances::simpson_relative,
                                                 int max_halvings = tolerances::simpson_max_halvings);
 
-/// Kontur's default: adaptive Gauss-Kronrod 7/15 on each piece between breakpoints, bisecting
-/// until the QUADPACK error estimate is below relative_tolerance of the piece's length.
+/// Kontur's default: on each piece between breakpoints, the nested Gauss-Kronrod-Patterson
+/// rules (7, 15, 31, 63 points, each reusing the evaluations of the one before), stopping at the
+/// first level whose difference to the previous one is below relative_tolerance of the value,
+/// and bisecting a panel that 63 points do not settle. relative_tolerance is raised to at least
+/// tolerances::min_length_relative.
 [[nodiscard]] LengthResult gauss_kronrod_length(const Curve& curve,
                                                 double relative_tolerance = tolerances::length_relative);
 /// The same on [u0, u1] (u0 <= u1), splitting at the curve's breakpoints inside.
@@ -67,6 +70,7 @@ private:
   std::vector<double> u_;      // interval ends, u_[0] = u_min
   std::vector<double> s_;      // arc length at u_[k] [mm]
   std::vector<double> speed_;  // |C'(u_[k])|
+  std::vector<unsigned char> level_;  // Patterson level accepted on interval k
   long build_evaluations_ = 0;
 };
 

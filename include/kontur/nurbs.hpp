@@ -40,6 +40,7 @@ public:
   [[nodiscard]] double u_min() const noexcept override;
   [[nodiscard]] double u_max() const noexcept override;
   [[nodiscard]] Derivatives derivatives(double u, int order) const noexcept override;
+  [[nodiscard]] Derivatives derivatives_left(double u, int order) const noexcept override;
   /// Distinct knots (span boundaries) from u_min to u_max.
   [[nodiscard]] std::vector<double> breakpoints() const override;
 
@@ -57,10 +58,14 @@ public:
   [[nodiscard]] const NurbsData& data() const noexcept { return data_; }
   /// Index i of the knot span [u_i, u_{i+1}) containing u (the last non-empty span for u_max).
   [[nodiscard]] int find_span(double u) const noexcept;
+  /// Like find_span, but at an inner knot the span that ends there (the limit from the left).
+  [[nodiscard]] int find_span_left(double u) const noexcept;
   /// Diagonal of the control points' bounding box [mm]: the curve's scale for relative errors.
   [[nodiscard]] double extent() const noexcept;
 
 private:
+  [[nodiscard]] Derivatives evaluate(double u, int span, int order) const noexcept;
+
   NurbsData data_;
   std::vector<double> weights_;
   bool rational_ = false;

@@ -60,6 +60,7 @@ public:
   [[nodiscard]] double u_min() const noexcept override { return spans_.front().u_start; }
   [[nodiscard]] double u_max() const noexcept override { return spans_.back().u_end; }
   [[nodiscard]] Derivatives derivatives(double u, int order) const noexcept override;
+  [[nodiscard]] Derivatives derivatives_left(double u, int order) const noexcept override;
   [[nodiscard]] std::vector<double> breakpoints() const override;
 
   /// The spans, in parameter order.

@@ -17,6 +17,10 @@ inline constexpr double knot_equal_relative = 1e-12;
 // ---- curve length
 /// Default relative accuracy of Kontur's adaptive Gauss-Kronrod length.
 inline constexpr double length_relative = 1e-13;
+/// Smallest relative accuracy a length may be asked for: a panel's error estimate never goes
+/// below 50 machine epsilons of its value (rounding of the sum), so a smaller request could
+/// never be met. Requests below it are raised to it.
+inline constexpr double min_length_relative = 2e-14;
 /// Default relative accuracy asked of the Simpson-Runge method (seed 000).
 inline constexpr double simpson_relative = 1e-10;
 /// Largest number of interval halvings of the Simpson-Runge method (2^24 intervals).
