@@ -14,7 +14,9 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::string text(reinterpret_cast<const char*>(data), size);
   try {
-    kontur::gcode::Reader reader("fuzz.ngc", std::move(text));
+    kontur::gcode::ReaderOptions options;
+    options.max_loop_iterations = 10000;  // O-word loops: enough to explore, small enough not to time out
+    kontur::gcode::Reader reader("fuzz.ngc", std::move(text), options);
     kontur::gcode::Block b;
     long blocks = 0;
     while (reader.next(b) && ++blocks < 200000) {

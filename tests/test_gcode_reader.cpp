@@ -8,6 +8,8 @@
 #include <kontur/length.hpp>
 
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -343,6 +345,73 @@ TEST(GcodeReader, NothingAfterAnError) {
   ASSERT_TRUE(r.next(b));
   EXPECT_THROW(r.next(b), InputError);
   EXPECT_FALSE(r.next(b));
+}
+
+TEST(GcodeReader, OWordSubroutineWithArgumentsAndReturnValue) {
+  const auto b = read("F100\no<square> sub\nG1 X#1 Y0\nG1 Y#1\no<square> endsub [#1 * 2]\n#1 = 7\n"
+                      "o<square> call [3]\nG1 X#1 Y#<_value>\no<square> call [5]\nM2\n");
+  ASSERT_EQ(b.size(), 5u);
+  expect_near(b[0].end, Vec3(3, 0, 0));
+  expect_near(b[1].end, Vec3(3, 3, 0));
+  expect_near(b[2].end, Vec3(7, 6, 0));  // #1 restored after the call, #<_value> = 2 * 3
+  expect_near(b[4].end, Vec3(5, 5, 0));
+  EXPECT_EQ(b[0].location.line, 3);
+}
+
+TEST(GcodeReader, OWordLoopsAndConditionals) {
+  // while with break, do-while, repeat with continue, if/elseif/else
+  const auto b = read("F100\n#1=0\no1 while [#1 LT 10]\n#1=[#1+1]\no2 if [#1 EQ 4]\no1 break\no2 endif\nG1 X#1\n"
+                      "o1 endwhile\n#2=0\no3 do\n#2=[#2+1]\nG1 Y#2\no3 while [#2 LT 2]\n"
+                      "#3=0\no4 repeat [4]\n#3=[#3+1]\no5 if [#3 EQ 2]\no4 continue\no5 elseif [#3 EQ 3]\nG1 Z-3\n"
+                      "o5 else\nG1 Z#3\no5 endif\no4 endrepeat\nM2\n");
+  std::vector<double> xs, ys, zs;
+  for (const auto& x : b) {
+    xs.push_back(x.end.x());
+    ys.push_back(x.end.y());
+    zs.push_back(x.end.z());
+  }
+  ASSERT_EQ(b.size(), 3u + 2u + 3u);
+  EXPECT_EQ(std::vector<double>(xs.begin(), xs.begin() + 3), (std::vector<double>{1, 2, 3}));
+  EXPECT_EQ(std::vector<double>(ys.begin() + 3, ys.begin() + 5), (std::vector<double>{1, 2}));
+  EXPECT_EQ(std::vector<double>(zs.begin() + 5, zs.end()), (std::vector<double>{1, -3, 4}));
+}
+
+TEST(GcodeReader, OWordEndlessLoopIsAnError) {
+  ReaderOptions o;
+  o.max_loop_iterations = 1000;
+  std::string message;
+  try {
+    read("F100\no1 while [1]\nG1 X1\no1 endwhile\n", o);
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  EXPECT_EQ(message, "test.ngc:2:1: O1: more than 1000 loop iterations and calls in the program (endless loop?)");
+  EXPECT_THROW(read("F100\no1 repeat [2000]\no1 endrepeat\n", o), InputError);
+  EXPECT_THROW(read("o1 sub\no1 call\no1 endsub\no1 call\n", o), InputError);  // recursion
+}
+
+TEST(GcodeReader, OWordCallSeeksBackAcrossTheFileBuffer) {
+  // the subroutine is more than the reader's 1 MiB buffer before the call
+  const std::string path = ::testing::TempDir() + "kontur_oword_seek.ngc";
+  {
+    std::ofstream f(path);
+    f << "F100\no100 sub\nG1 X#1\no100 endsub\n";
+    const std::string comment = "(" + std::string(70, 'c') + ")\n";
+    for (int i = 0; i < 20000; ++i) f << comment;
+    f << "o100 call [1]\no100 call [2]\nM2\n";
+  }
+  Reader r(path);
+  Block b;
+  std::vector<double> xs;
+  std::vector<long> lines;
+  while (r.next(b)) {
+    xs.push_back(b.end.x());
+    lines.push_back(b.location.line);
+  }
+  EXPECT_EQ(xs, (std::vector<double>{1, 2}));
+  EXPECT_EQ(lines, (std::vector<long>{3, 3}));
+  EXPECT_EQ(r.lines_read(), 20007);
+  std::remove(path.c_str());
 }
 
 TEST(GcodeExpression, OperatorsFunctionsAndPrecedence) {

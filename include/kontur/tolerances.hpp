@@ -75,6 +75,9 @@ inline constexpr int gcode_max_cycle_moves = 100000;
 inline constexpr double gcode_max_coordinate_mm = 1e6;
 /// Largest feed F [mm/min or 1/min], dwell [s] and NURBS weight or knot magnitude a program may give.
 inline constexpr double gcode_max_value = 1e9;
+/// Default largest number of O-word loop iterations and subroutine calls of a whole program
+/// (ReaderOptions::max_loop_iterations): more is taken as an endless loop.
+inline constexpr long gcode_max_loop_iterations = 10000000;
 /// Largest number of pecks of one G73 / G83 hole (Q too small for the depth is an error).
 inline constexpr int gcode_max_pecks = 10000;
 

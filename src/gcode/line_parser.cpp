@@ -318,6 +318,9 @@ void normalize_line(std::string_view raw, const LineContext& ctx, NormalizedLine
     const char u = (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
     const bool ok = is_letter(u) || is_digit(u) || u == '.' || u == '+' || u == '-' || u == '*' || u == '/' ||
                     u == '[' || u == ']' || u == '#' || u == '<' || u == '>' || u == '=' || u == '_';
+    if (c == '@' || c == '^')
+      fail_column(ctx, col, "unsupported",
+                  fmt::format("'{}': LinuxCNC polar coordinates (@ radius, ^ angle) are not supported by Kontur", c));
     if (!ok) fail_column(ctx, col, "character", fmt::format("'{}': character not allowed outside comments", c));
     if (!seen_content) out.first_column = col;
     if (out.text.empty()) out.first_column = col;
@@ -384,8 +387,8 @@ void parse_words(const NormalizedLine& line, const LineContext& ctx, const Param
       continue;
     }
     if (c == 'O')
-      fail_at(line, start, ctx, "unsupported-o-word",
-              fmt::format("'{}': O-word subroutines, loops and conditionals are not supported", excerpt(line, start)));
+      fail_at(line, start, ctx, "o-word",
+              fmt::format("'{}': an O-word must be the first word of its line", excerpt(line, start)));
     if (c == 'N') {
       if (!first) fail_at(line, start, ctx, "n-word", fmt::format("'{}': N number not at the start of the block", excerpt(line, start)));
       ++pos;

@@ -11,6 +11,7 @@
 // reads the whole program without keeping any block, and only if it is valid reads it again and
 // hands the blocks out. A program with an error so yields no block to later stages.
 #include <kontur/gcode/block.hpp>
+#include <kontur/tolerances.hpp>
 
 #include <array>
 #include <cstddef>
@@ -28,6 +29,9 @@ struct ReaderOptions {
   bool block_delete = true;
   /// Warnings kept in Reader::warnings() (the count goes on beyond).
   std::size_t max_warnings_kept = 100;
+  /// O-word loop iterations and subroutine calls allowed in the whole program; more is an error
+  /// (an endless loop). Default tolerances::gcode_max_loop_iterations.
+  long max_loop_iterations = tolerances::gcode_max_loop_iterations;
 };
 
 /// Reads a program and hands out its blocks one by one.
