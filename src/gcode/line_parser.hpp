@@ -26,7 +26,6 @@ struct NormalizedLine {
   bool block_delete = false;  // the line starts with '/'
   bool percent = false;       // the line is a '%' tape mark
   int first_column = 1;       // raw column of the first character of text
-  std::string first_comment;  // unused by the reader (kept empty); reserved for MSG comments
 };
 
 /// Normalises `raw` (one line without its end-of-line characters) into `out` (buffers reused).

@@ -925,7 +925,6 @@ struct Reader::Impl {
       case 530: machine_coordinates = true; break;
       case 920: {
         if (!has_axes()) fail(group_col[g_nonmodal], "axis-words", "G92: axis words missing");
-        const Vec3 t = target();
         const char letters[3] = {'X', 'Y', 'Z'};
         for (int a = 0; a < 3; ++a)
           if (w.has(letters[a])) {
@@ -933,7 +932,6 @@ struct Reader::Impl {
             g92[a] = pos[a] + g92[a] - v;
             pos[a] = v;
           }
-        (void)t;
         g92_saved = g92;
         break;
       }
@@ -975,7 +973,7 @@ struct Reader::Impl {
           fail(block_column(), "axis-words", "axis words without a motion command (G80 cancelled the motion mode)");
       } else if (axes_for_motion || motion == 52 || (motion == 62 && w.has('K')) || is_cycle ||
                  w.keyword != Keyword::none) {
-        move(motion, motion_col, machine_coordinates, starts_motion, motion_word);
+        move(motion, motion_col, machine_coordinates, motion_word);
       }
     }
 
@@ -1015,7 +1013,7 @@ struct Reader::Impl {
   }
 
   // ================================================================ motion
-  void move(int motion, int col, bool machine_coordinates, bool starts_motion, int motion_word) {
+  void move(int motion, int col, bool machine_coordinates, int motion_word) {
     const Vec3 to = target(machine_coordinates);
     if (motion != 50 && motion != 51) prev_g5 = false;
     switch (motion) {
@@ -1025,13 +1023,12 @@ struct Reader::Impl {
       case 50: case 51: bezier(motion == 50, to, col); return;
       case 52: start_g52(col); return;
       case 62: start_g62(col, motion_word); return;
-      case 24: case 34: circle_block(motion, to, col); return;
+      case 24: case 34: circle_block(motion, col); return;
       case motion_cip: cip(to, col); return;
       case motion_conic: conic(to, col); return;
       case 730: case 810: case 820: case 830: cycle(motion, col); return;
       default: break;
     }
-    (void)starts_motion;
     fail(col, "internal", fmt::format("motion mode {} not handled", g_name(motion)));
   }
 
@@ -1426,11 +1423,11 @@ struct Reader::Impl {
   static HelixArc make_circle_3d(const Vec3& r1, const Vec3& r2, const Vec3& r3) {
     return detail::circle_through_three_points(r1, r2, r3);
   }
-  void circle_block(int motion, const Vec3& to, int col) {
+  void circle_block(int motion, int col) {
     if (!has_axes()) return;
     if (!circle_pending) {
       circle_pending = true;
-      circle_mid = to;
+      circle_mid = target();
       circle_loc = location(col);
       circle_g = motion;
       feed_move(g_name(motion, true));  // report a missing feed at the first block
@@ -1446,7 +1443,6 @@ struct Reader::Impl {
       } else {
         end_point[a] = modal.distance == DistanceMode::absolute ? pos[a] : circle_mid[a];
       }
-    (void)to;
     circle_pending = false;
     // the circle is the block of its first line: report its errors there
     const long this_line = line_no;
