@@ -2,7 +2,7 @@
 // Internal, temporary: the circle through three points of space as a HelixArc, for Sinumerik CIP
 // and Fanuc G02.4/G03.4 blocks. The arcs-and-conics issue (branch issue-3) builds the library's
 // own three-point circle; when it lands, the reader's one call of this function
-// (src/gcode/reader.cpp, make_circle_3d) switches to it and this file goes away.
+// (src/gcode/arc_blocks.cpp, Reader::Impl::make_circle_3d) switches to it and this file goes away.
 #include <kontur/helix_arc.hpp>
 
 namespace kontur::gcode::detail {
