@@ -10,6 +10,7 @@
 
 #include "support/occt_oracle.hpp"
 #include "support/random_curves.hpp"
+#include "support/seed_curves.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -48,13 +49,8 @@ Case make_case(NurbsData d, double reference) {
 std::vector<Case>& cases(const std::string& set) {
   static std::vector<Case> seed1, seed2, random;
   if (seed1.empty()) {
-    NurbsData d;
-    d.degree = 3;
-    d.knots = {0, 0, 0, 0, 0.5, 1, 1, 1, 1};
-    d.points = {{-100, -60, 0}, {-100, 0, 0}, {-40, 70, 0}, {60, 90, 0}, {30, 120, 0}};
-    seed1.push_back(make_case(d, 249.463109910705));
-    d.points = {{0, 0, 0}, {-9.5, 115.8, 0}, {60, -35.8, 0}, {129.5, 115.8, 0}, {120, 0, 0}};
-    seed2.push_back(make_case(d, 252.584228618995));
+    seed1.push_back(make_case(testing::seed_example(1), testing::seed_true_length_1));
+    seed2.push_back(make_case(testing::seed_example(2), testing::seed_true_length_2));
     const auto n = testing::test_count(200);
     for (std::uint64_t i = 0; i < n; ++i) random.push_back(make_case(testing::random_nurbs(testing::test_seed(), i), 0.0));
   }

@@ -66,14 +66,13 @@ void ForwardDifferenceStepper::anchor(std::size_t span_index) noexcept {
   span_ = span_index;
   const SpanPolynomial& s = spans[span_index];
   const double a = u() - s.u_start;
+  for (auto& v : hi_) v.setZero();
+  for (auto& v : lo_) v.setZero();
   for (int axis = 0; axis < dims_; ++axis) {
     PolyCoeffs c{};
     for (int k = 0; k <= p_; ++k) c[static_cast<std::size_t>(k)] = s.coeff[static_cast<std::size_t>(k)][axis];
     const PolyCoeffs D = initial_differences(c, p_, a, h_);
-    for (int k = 0; k <= p_; ++k) {
-      hi_[static_cast<std::size_t>(axis)][static_cast<std::size_t>(k)] = D[static_cast<std::size_t>(k)];
-      lo_[static_cast<std::size_t>(axis)][static_cast<std::size_t>(k)] = 0.0;
-    }
+    for (int k = 0; k <= p_; ++k) hi_[static_cast<std::size_t>(k)][axis] = D[static_cast<std::size_t>(k)];
   }
   // First cycle that falls into a later span: the smallest n with u_n >= u_end.
   if (span_index + 1 >= spans.size()) {
@@ -87,44 +86,49 @@ void ForwardDifferenceStepper::anchor(std::size_t span_index) noexcept {
   next_anchor_n_ = m;
 }
 
+template <bool kCompensated>
+void ForwardDifferenceStepper::add_differences() noexcept {
+  for (int k = 0; k < p_; ++k) {
+    const auto kk = static_cast<std::size_t>(k);
+    if constexpr (!kCompensated) {
+      hi_[kk] += hi_[kk + 1];
+    } else {
+      // TwoSum of the high parts, then fold in the low parts and renormalise (Fast2Sum).
+      const Eigen::Vector4d s = hi_[kk] + hi_[kk + 1];
+      const Eigen::Vector4d bb = s - hi_[kk];
+      const Eigen::Vector4d e = (hi_[kk] - (s - bb)) + (hi_[kk + 1] - bb);
+      const Eigen::Vector4d l = lo_[kk] + lo_[kk + 1] + e;
+      const Eigen::Vector4d r = s + l;
+      lo_[kk] = l - (r - s);
+      hi_[kk] = r;
+    }
+  }
+}
+
 bool ForwardDifferenceStepper::step() noexcept {
   if (n_ >= cycles_) return false;
   ++n_;
   if (n_ >= next_anchor_n_) {
     // Re-anchor exactly: find the span of u_n (spans shorter than h may be skipped).
     anchor(curve_->span_index(u()));
-    return true;
-  }
-  for (int axis = 0; axis < dims_; ++axis) {
-    auto& hi = hi_[static_cast<std::size_t>(axis)];
-    auto& lo = lo_[static_cast<std::size_t>(axis)];
-    if (summation_ == Summation::plain) {
-      for (int k = 0; k < p_; ++k) hi[static_cast<std::size_t>(k)] += hi[static_cast<std::size_t>(k + 1)];
-    } else {
-      for (int k = 0; k < p_; ++k) {
-        const auto kk = static_cast<std::size_t>(k);
-        // TwoSum of the high parts, then fold the low parts and renormalise (Fast2Sum).
-        const double s = hi[kk] + hi[kk + 1];
-        const double bb = s - hi[kk];
-        const double e = (hi[kk] - (s - bb)) + (hi[kk + 1] - bb);
-        const double l = lo[kk] + lo[kk + 1] + e;
-        const double r = s + l;
-        lo[kk] = l - (r - s);
-        hi[kk] = r;
-      }
-    }
+  } else if (summation_ == Summation::plain) {
+    add_differences<false>();
+  } else {
+    add_differences<true>();
   }
   return true;
 }
 
 Vec3 ForwardDifferenceStepper::point() const noexcept {
-  Vec3 q(hi_[0][0] + lo_[0][0], hi_[1][0] + lo_[1][0], hi_[2][0] + lo_[2][0]);
-  if (dims_ == 4) q /= (hi_[3][0] + lo_[3][0]);
-  return q;
+  const Eigen::Vector4d q = hi_[0] + lo_[0];
+  if (dims_ == 4) return q.head<3>() / q[3];
+  return q.head<3>();
 }
 
-std::span<const double> ForwardDifferenceStepper::differences(int axis) const noexcept {
-  return {hi_[static_cast<std::size_t>(axis)].data(), static_cast<std::size_t>(p_ + 1)};
+PolyCoeffs ForwardDifferenceStepper::differences(int axis) const noexcept {
+  PolyCoeffs d{};
+  for (int k = 0; k <= p_; ++k) d[static_cast<std::size_t>(k)] = hi_[static_cast<std::size_t>(k)][axis];
+  return d;
 }
 
 }  // namespace kontur

@@ -74,19 +74,39 @@ double patterson_fixed(const Curve& curve, double a, double b, int level) noexce
   return q * half;
 }
 
-// Adaptive bisection; calls accept(a, b, result) for every accepted panel, in order.
+// Adaptive bisection of a piece [a, b] whose first panel `r` is already computed; calls
+// accept(a, b, result) for every accepted panel, in order. A panel is accepted when its error is
+// within rel_tol of its own value, or within its share of the piece's budget: rel_tol times the
+// piece's first estimate, times the panel's fraction of the piece's width (abs_density is that
+// budget per unit of u). The second test keeps the total error below rel_tol of the piece's
+// length where the curve hardly moves (near a cusp, |C'| ~ 0, the relative test alone asks for
+// ever more panels, since |C'| there is mostly rounding noise).
 template <class Accept>
-void adaptive(const Curve& curve, double a, double b, double rel_tol, int depth, long& evaluations,
-              Accept&& accept) {
-  const GkResult r = patterson_panel(curve, a, b, rel_tol, evaluations);
+void adaptive(const Curve& curve, double a, double b, const GkResult& r, double rel_tol, double abs_density,
+              int depth, long& evaluations, Accept&& accept) {
   const double mid = 0.5 * (a + b);
-  const bool small = !(mid > a && mid < b);
-  if (r.ok || depth >= tolerances::gauss_kronrod_max_depth || small) {
-    accept(a, b, r);
+  // A panel only a few hundred ulps of u wide cannot be resolved further: the nodes' positions
+  // are quantised, so the value there is as good as double precision allows.
+  const bool small = !(mid > a && mid < b) || (b - a) <= 256.0 * kEps * std::max(std::abs(a), std::abs(b));
+  const bool within_budget = r.error <= abs_density * (b - a);
+  if (r.ok || within_budget || depth >= tolerances::gauss_kronrod_max_depth || small) {
+    GkResult accepted = r;
+    accepted.ok = r.ok || within_budget;
+    accept(a, b, accepted);
     return;
   }
-  adaptive(curve, a, mid, rel_tol, depth + 1, evaluations, accept);
-  adaptive(curve, mid, b, rel_tol, depth + 1, evaluations, accept);
+  const GkResult left = patterson_panel(curve, a, mid, rel_tol, evaluations);
+  adaptive(curve, a, mid, left, rel_tol, abs_density, depth + 1, evaluations, accept);
+  const GkResult right = patterson_panel(curve, mid, b, rel_tol, evaluations);
+  adaptive(curve, mid, b, right, rel_tol, abs_density, depth + 1, evaluations, accept);
+}
+
+// The adaptive integration of one piece between breakpoints.
+template <class Accept>
+void integrate_piece(const Curve& curve, double a, double b, double rel_tol, long& evaluations, Accept&& accept) {
+  const GkResult root = patterson_panel(curve, a, b, rel_tol, evaluations);
+  const double abs_density = rel_tol * std::abs(root.value) / (b - a);
+  adaptive(curve, a, b, root, rel_tol, abs_density, 0, evaluations, accept);
 }
 
 // Splits [u0, u1] at the curve's breakpoints and calls f(a, b) on each piece.
@@ -156,7 +176,7 @@ LengthResult gauss_kronrod_length(const Curve& curve, double u0, double u1, doub
   LengthResult out;
   out.converged = true;
   for_each_piece(curve, u0, u1, [&](double a, double b) {
-    adaptive(curve, a, b, rel_tol, 0, out.evaluations, [&](double, double, const GkResult& r) {
+    integrate_piece(curve, a, b, rel_tol, out.evaluations, [&](double, double, const GkResult& r) {
       out.length_mm += r.value;
       out.error_estimate_mm += r.error;
       out.converged = out.converged && r.ok;
@@ -176,7 +196,7 @@ ArcLengthTable::ArcLengthTable(const Curve& curve, double rel_tol) : curve_(&cur
   u_.push_back(curve.u_min());
   s_.push_back(0.0);
   for_each_piece(curve, curve.u_min(), curve.u_max(), [&](double a, double b) {
-    adaptive(curve, a, b, rel_tol, 0, build_evaluations_, [&](double, double hi, const GkResult& r) {
+    integrate_piece(curve, a, b, rel_tol, build_evaluations_, [&](double, double hi, const GkResult& r) {
       u_.push_back(hi);
       s_.push_back(s_.back() + r.value);
       // A part of an interval is integrated with the rule that was accurate on the whole of it.
@@ -196,7 +216,9 @@ double ArcLengthTable::s_of_u(double u) const noexcept {
   return s_[k] + patterson_fixed(*curve_, u_[k], u, level_[k]);
 }
 
-double ArcLengthTable::u_of_s(double s) const noexcept {
+double ArcLengthTable::u_of_s(double s) const noexcept { return u_of_s(s, std::numeric_limits<double>::quiet_NaN()); }
+
+double ArcLengthTable::u_of_s(double s, double u_hint) const noexcept {
   const double total = s_.back();
   if (!(s > 0.0)) return u_.front();
   if (s >= total) return u_.back();
@@ -208,6 +230,7 @@ double ArcLengthTable::u_of_s(double s) const noexcept {
   // mean is within a few per cent on a table interval, and Newton does the rest.
   double lo = ua, hi = ub;
   double u = (sb > sa) ? ua + (ub - ua) * (ds / (sb - sa)) : ua;
+  if (u_hint > ua && u_hint < ub) u = u_hint;  // false for NaN
   const double ftol = tolerances::inverse_length_relative * std::max(total, 1e-300);
   for (int it_count = 0; it_count < tolerances::inverse_length_max_iterations; ++it_count) {
     const double f = (u > ua ? patterson_fixed(*curve_, ua, u, level_[k]) : 0.0) - ds;
@@ -221,6 +244,42 @@ double ArcLengthTable::u_of_s(double s) const noexcept {
       break;
     }
     u = next;
+  }
+  return u;
+}
+
+}  // namespace kontur
+
+namespace kontur {
+
+double ArcLengthTable::u_after(double u_from, double s_from, double s_to, double u_hint) const noexcept {
+  const double total = s_.back();
+  if (s_to >= total) return u_.back();
+  const auto it = std::upper_bound(s_.begin(), s_.end(), s_to);
+  const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(it - s_.begin()) - 1, u_.size() - 2);
+  const double ua = u_[k], ub = u_[k + 1];
+  if (!(u_from >= ua && u_from < ub && s_from <= s_to)) return u_of_s(s_to, u_hint);
+  // Newton on F(u) = s_from + length(u_from, u) - s_to, bracketed in [u_from, ub].
+  const double ds = s_to - s_from;
+  const double ftol = std::max(1e-12 * ds, tolerances::inverse_length_relative * 1e-2 * total);
+  double lo = u_from, hi = ub;
+  double u = (u_hint > lo && u_hint < hi) ? u_hint : lo + (hi - lo) * std::min(1.0, ds / std::max(s_[k + 1] - s_from, 1e-300));
+  for (int i = 0; i < tolerances::inverse_length_max_iterations; ++i) {
+    // The nested rules on the step itself, up to the level where two agree (15 points on a
+    // smooth step, more near a cusp or a sharp turn).
+    long unused = 0;
+    const double f = patterson_panel(*curve_, u_from, u, 1e-13, unused).value - ds;
+    if (std::abs(f) <= ftol) break;
+    if (f > 0.0) hi = u; else lo = u;
+    const double v = curve_->speed(u);
+    double next = (v > 0.0) ? u - f / v : 0.5 * (lo + hi);
+    if (next == u) break;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    const bool converging = std::abs(f) <= 1e-7 * ds && next > lo && next < hi;
+    u = next;
+    // Newton's error after a step from |f| is of order (f / ds)^2 ds: from 1e-7 ds that is far
+    // below the tolerance, so the result needs no further integral.
+    if (converging || hi - lo <= 4.0 * kEps * std::max(std::abs(lo), std::abs(hi))) break;
   }
   return u;
 }

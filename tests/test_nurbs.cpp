@@ -5,6 +5,7 @@
 
 #include "support/occt_oracle.hpp"
 #include "support/random_curves.hpp"
+#include "support/seed_curves.hpp"
 
 #include <cmath>
 #include <limits>
@@ -12,13 +13,7 @@
 namespace kontur {
 namespace {
 
-NurbsData cubic() {
-  NurbsData d;
-  d.degree = 3;
-  d.knots = {0, 0, 0, 0, 0.5, 1, 1, 1, 1};
-  d.points = {{-100, -60, 0}, {-100, 0, 0}, {-40, 70, 0}, {60, 90, 0}, {30, 120, 0}};
-  return d;
-}
+NurbsData cubic() { return testing::seed_example(1); }
 
 void expect_problem(const NurbsData& d, const std::string& rule, const std::string& fragment) {
   const auto p = validate(d);
@@ -37,11 +32,7 @@ TEST(NurbsValidation, AcceptsSeedExample) { EXPECT_FALSE(validate(cubic()).has_v
 
 TEST(NurbsValidation, RejectsSeed004InconsistentExample) {
   // methods.md section 3: 5 points, 8 knots, 9 weights.
-  NurbsData d;
-  d.degree = 3;
-  d.points = {{0, 0, 1}, {25, 30, 6}, {50, 50, 16}, {65, 60, 22}, {77, 70, 30}};
-  d.knots = {0, 0, 0, 0, 0.45, 0.636, 0.742, 1};
-  d.weights = {1.6, 1.7, 0.7, 1.25, 0.6, 0.85, 1, 1.2, 1.2};
+  NurbsData d = testing::seed_004_inconsistent();
   expect_problem(d, "weight-count", "9 weights given for 5 control points");
   d.weights.resize(5);  // with the weights fixed, the knot count is still wrong
   expect_problem(d, "knot-count", "8 knots given, 9 needed (5 control points + degree 3 + 1)");

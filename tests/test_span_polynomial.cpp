@@ -4,17 +4,12 @@
 #include <kontur/span_polynomial.hpp>
 
 #include "support/random_curves.hpp"
+#include "support/seed_curves.hpp"
 
 namespace kontur {
 namespace {
 
-NurbsData seed_example1() {
-  NurbsData d;
-  d.degree = 3;
-  d.knots = {0, 0, 0, 0, 0.5, 1, 1, 1, 1};
-  d.points = {{-100, -60, 0}, {-100, 0, 0}, {-40, 70, 0}, {60, 90, 0}, {30, 120, 0}};
-  return d;
-}
+NurbsData seed_example1() { return testing::seed_example(1); }
 
 void expect_poly(const PolyCoeffs& c, std::array<double, 4> highest_first, const char* what) {
   for (int k = 0; k <= 3; ++k) EXPECT_DOUBLE_EQ(c[static_cast<std::size_t>(3 - k)], highest_first[static_cast<std::size_t>(k)]) << what << " power " << 3 - k;

@@ -18,4 +18,7 @@ void register_spline_command(CLI::App& app, int& exit_code);
 /// `kontur check PROGRAM`: validate a G-code program, print its blocks and totals.
 void register_check_command(CLI::App& app, int& exit_code);
 
+/// `kontur machine [FILE]`: validate a machine file and print the limits in use.
+void register_machine_command(CLI::App& app, int& exit_code);
+
 }  // namespace kontur::app

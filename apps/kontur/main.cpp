@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
              "Run `kontur SUBCOMMAND --help` for the options of each subcommand.");
   int exit_code = exit_ok;
   register_spline_command(app, exit_code);
+  register_machine_command(app, exit_code);
   register_check_command(app, exit_code);
   try {
     app.parse(argc, argv);

@@ -5,6 +5,7 @@
 
 #include <kontur/error.hpp>
 #include <kontur/forward_difference.hpp>
+#include <kontur/interpolation.hpp>
 #include <kontur/io/curve_json.hpp>
 #include <kontur/length.hpp>
 #include <kontur/span_polynomial.hpp>
@@ -24,6 +25,8 @@ struct SplineOptions {
   double tolerance = tolerances::simpson_relative;
   std::string basis = "global";
   std::string summation = "plain";
+  double feed_mm_min = 0.0;
+  double period_s = 1e-3;
   bool json = false;
 };
 
@@ -47,6 +50,10 @@ void run_spline(const SplineOptions& o) {
     throw InputError("step-too-small",
                      fmt::format("--step {}: gives {:.0f} rows for the parameter range {}; at most 1e7 are printed",
                                  o.step, range / o.step, range));
+  if (o.feed_mm_min < 0.0 || !std::isfinite(o.feed_mm_min))
+    throw InputError("feed-positive", fmt::format("--feed {}: must be a finite feed > 0 [mm/min]", o.feed_mm_min));
+  if (!(o.period_s > 0.0 && o.period_s <= 1.0))
+    throw InputError("period-range", fmt::format("--period {}: must be in (0, 1] [s]", o.period_s));
   const bool global = o.basis == "global";
   const SpanPolynomialCurve spans(curve);
   const int p = curve.degree();
@@ -55,6 +62,22 @@ void run_spline(const SplineOptions& o) {
   const LengthResult s1 = simpson_runge_length(spans, SimpsonScheme::per_span, o.tolerance);
   const LengthResult s2 = simpson_runge_length(spans, SimpsonScheme::whole_curve, o.tolerance);
   const Summation summation = o.summation == "compensated" ? Summation::compensated : Summation::plain;
+  // Seed 004: feed fluctuation of the interpolators at the constant feed --feed.
+  struct Fluct {
+    Interpolator kind;
+    FeedFluctuation f;
+  };
+  std::vector<Fluct> fluct;
+  if (o.feed_mm_min > 0.0) {
+    const double cycles = gk.length_mm / (o.feed_mm_min / 60.0 * o.period_s);
+    if (cycles > 1e7)
+      throw InputError("too-many-cycles", fmt::format("--feed {} --period {}: {:.0f} cycles along {:.3f} mm; at most "
+                                                      "1e7 are measured",
+                                                      o.feed_mm_min, o.period_s, cycles, gk.length_mm));
+    for (const Interpolator k :
+         {Interpolator::taylor_first_order, Interpolator::taylor_second_order, Interpolator::arc_length_exact})
+      fluct.push_back({k, measure_feed_fluctuation(spans, k, o.feed_mm_min / 60.0, o.period_s)});
+  }
 
   if (o.json) {
     nlohmann::ordered_json j;
@@ -93,6 +116,17 @@ void run_spline(const SplineOptions& o) {
     j["length"]["gauss_kronrod"] = length_json(gk);
     j["length"]["simpson_runge_per_span"] = length_json(s1);
     j["length"]["simpson_runge_whole_curve"] = length_json(s2);
+    if (!fluct.empty()) {
+      auto& jf = j["feed_fluctuation"];
+      jf["feed_mm_min"] = o.feed_mm_min;
+      jf["period_s"] = o.period_s;
+      for (const auto& f : fluct) {
+        jf[to_string(f.kind)] = {{"cycles", f.f.cycles},
+                                 {"max_relative", f.f.max_relative},
+                                 {"mean_relative", f.f.mean_relative},
+                                 {"max_chord_error_mm", f.f.max_chord_error_mm}};
+      }
+    }
     if (o.step > 0.0) {
       ForwardDifferenceStepper fd(spans, o.step, summation);
       auto& rows = j["forward_differences"]["rows"] = nlohmann::ordered_json::array();
@@ -106,7 +140,7 @@ void run_spline(const SplineOptions& o) {
         r["point"] = {q.x(), q.y(), q.z()};
         for (int a = 0; a < dims; ++a) {
           const auto d = fd.differences(a);
-          r["differences"][kAxis[a]] = std::vector<double>(d.begin(), d.end());
+          r["differences"][kAxis[a]] = std::vector<double>(d.begin(), d.begin() + fd.degree() + 1);
         }
         rows.push_back(r);
       } while (fd.step());
@@ -144,6 +178,15 @@ void run_spline(const SplineOptions& o) {
   fmt::print("  Simpson whole-curve table (seed 000): n, l_n [mm]\n");
   for (const auto& [n, l] : s2.history) fmt::print("    {:>8} {:>18.6f}\n", n, l);
 
+  if (!fluct.empty()) {
+    fmt::print("\nfeed fluctuation (seed 004) at F = {} mm/min, T = {} s: |arc of a cycle / (F T) - 1|\n", num(o.feed_mm_min),
+               num(o.period_s));
+    fmt::print("  {:<10} {:>10} {:>14} {:>14} {:>18}\n", "interp.", "cycles", "max", "mean", "max chord err [mm]");
+    for (const auto& f : fluct)
+      fmt::print("  {:<10} {:>10} {:>14.3e} {:>14.3e} {:>18.3e}\n", to_string(f.kind), f.f.cycles, f.f.max_relative,
+                 f.f.mean_relative, f.f.max_chord_error_mm);
+  }
+
   if (o.step > 0.0) {
     ForwardDifferenceStepper fd(spans, o.step, summation);
     fmt::print("\nforward differences (lower level), h = {}, {} summation, {} cycles\n", num(o.step), o.summation,
@@ -155,7 +198,10 @@ void run_spline(const SplineOptions& o) {
     do {
       std::string line = fmt::format("  {:>8} {:>12.8g} {:>4}", fd.n(), fd.u(), fd.span());
       for (int a = 0; a < dims; ++a)
-        for (const double d : fd.differences(a)) line += fmt::format(" {:>14.8g}", d == 0.0 ? 0.0 : d);
+        for (int k = 0; k <= fd.degree(); ++k) {
+          const double d = fd.differences(a)[static_cast<std::size_t>(k)];
+          line += fmt::format(" {:>14.8g}", d == 0.0 ? 0.0 : d);
+        }
       fmt::print("{}\n", line);
     } while (fd.step());
   }
@@ -180,8 +226,13 @@ void register_spline_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--summation", opts->summation, "forward-difference additions: plain or compensated")
       ->check(CLI::IsMember({"plain", "compensated"}))
       ->capture_default_str();
+  cmd->add_option("--feed", opts->feed_mm_min,
+                  "constant feed F [mm/min]: measure the feed fluctuation of the Taylor interpolators (seed 004) and "
+                  "of Kontur's arc-length-exact one");
+  cmd->add_option("--period", opts->period_s, "servo period T [s] for --feed")->capture_default_str();
   cmd->add_flag("--json", opts->json, "print the result as JSON");
-  cmd->footer("Example:\n  kontur spline examples/curves/seed_example1.json --step 0.05\n"
+  cmd->footer("Examples:\n  kontur spline examples/curves/seed_example1.json --step 0.05\n"
+              "  kontur spline examples/curves/seed_example2.json --feed 6000 --period 0.001\n"
               "Exit codes: 0 valid curve, 1 invalid curve or file, 2 wrong command line.");
   cmd->callback([opts, &exit_code]() {
     run_spline(*opts);

@@ -2,6 +2,7 @@
 // The interface every geometric curve of Kontur implements (NURBS, span polynomials, lines,
 // circles, conics), so that length, u(s), planning and interpolation treat all of them alike.
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products of Vec3
 #include <array>
 #include <vector>
 

@@ -3,7 +3,6 @@
 // p additions per coordinate per servo cycle, re-anchored exactly at every span boundary.
 #include <kontur/span_polynomial.hpp>
 
-#include <span>
 
 namespace kontur {
 
@@ -41,13 +40,18 @@ public:
   [[nodiscard]] long cycles() const noexcept { return cycles_; }
   /// Current point [mm] (homogeneous coordinates divided by w for a rational curve).
   [[nodiscard]] Vec3 point() const noexcept;
-  /// Current value and differences D0..Dp of coordinate `axis` (0..3; 3 = w), high parts.
-  [[nodiscard]] std::span<const double> differences(int axis) const noexcept;
+  /// Current value and differences D0..Dp of coordinate `axis` (0..3; 3 = w); entries above
+  /// degree() are zero.
+  [[nodiscard]] PolyCoeffs differences(int axis) const noexcept;
+  /// Degree p of the polynomials (number of differences).
+  [[nodiscard]] int degree() const noexcept { return p_; }
   /// Index of the current span.
   [[nodiscard]] std::size_t span() const noexcept { return span_; }
 
 private:
   void anchor(std::size_t span_index) noexcept;
+  template <bool kCompensated>
+  void add_differences() noexcept;
 
   const SpanPolynomialCurve* curve_;
   double h_;
@@ -58,8 +62,10 @@ private:
   long cycles_ = 0;
   long next_anchor_n_ = 0;  // first n of the next span
   std::size_t span_ = 0;
-  std::array<std::array<double, tolerances::max_degree + 1>, 4> hi_{};
-  std::array<std::array<double, tolerances::max_degree + 1>, 4> lo_{};
+  // Differences by order: hi_[k] = (D_k x, D_k y, D_k z, D_k w); lo_[k] their low parts
+  // (compensated summation only). One vector addition per order and cycle.
+  std::array<Eigen::Vector4d, tolerances::max_degree + 1> hi_;
+  std::array<Eigen::Vector4d, tolerances::max_degree + 1> lo_;
 };
 
 }  // namespace kontur

@@ -60,6 +60,15 @@ public:
   /// Parameter at arc length s [mm] (s clamped to [0, length]); relative accuracy 1e-13 of the
   /// length. Allocation-free.
   [[nodiscard]] double u_of_s(double s_mm) const noexcept;
+  /// The same, starting Newton from `u_hint` when it lies in the table interval of s (a good
+  /// prediction, e.g. a Taylor step, saves iterations).
+  [[nodiscard]] double u_of_s(double s_mm, double u_hint) const noexcept;
+  /// Parameter at arc length s_to [mm], given a point (u_from, s_from) on the curve a short way
+  /// before it (s_from <= s_to): when both lie in one table interval, Newton integrates only the
+  /// step from u_from (nested Gauss-Kronrod-Patterson rules up to the level where two agree),
+  /// starting at `u_hint`; otherwise it is u_of_s(s_to, u_hint).
+  /// The stepping of a servo cycle. Allocation-free.
+  [[nodiscard]] double u_after(double u_from, double s_from, double s_to, double u_hint) const noexcept;
   /// Number of table intervals.
   [[nodiscard]] std::size_t intervals() const noexcept { return u_.size() - 1; }
   /// Evaluations of |C'| spent building the table.

@@ -22,6 +22,14 @@ kontur_cli_case(spline_seed_g06_2_inconsistent 1 "seed_g06_2_inconsistent\\.json
 kontur_cli_case(spline_missing_file 1 "no-such-curve\\.json: no such file" spline no-such-curve.json)
 kontur_cli_case(spline_not_json 1 "CMakeLists\\.txt:1:[0-9]+: not valid JSON" spline CMakeLists.txt)
 kontur_cli_case(spline_bad_step 1 "--step -1" spline examples/curves/seed_example1.json --step -1)
+kontur_cli_case(spline_feed_fluctuation 0 "taylor1 +2525 .*taylor2 +2525 .*exact +2525 +[0-9.]+e-1[0-9]" spline
+                examples/curves/seed_example2.json --feed 6000 --period 0.001)
+kontur_cli_case(spline_bad_period 1 "--period 0: must be in \\(0, 1\\]" spline examples/curves/seed_example1.json
+                --feed 100 --period 0)
+kontur_cli_case(machine_default 0 "max_jerk = 50000" machine)
+kontur_cli_case(machine_linuxcnc_ini 0 "max_velocity = 203\\.2" machine ../shared/data/gcode/linuxcnc-tp/configs/XYZ.ini)
+kontur_cli_case(machine_missing_file 1 "nowhere\\.toml: no such file" machine nowhere.toml)
+
 
 # kontur check: G-code programs (docs/gcode.md)
 kontur_cli_case(check_help 0 "CONIC X- Y- Z- I1=- J1=- K1=- I2=- J2=- K2=- I3=- J3=- K3=-" check --help)

@@ -32,6 +32,9 @@ struct RandomCurveOptions {
   bool rational = true;        ///< random weights in [0.2, 5]
   double size_mm = 100.0;      ///< control points in a cube of this size [mm]
   bool repeated_knots = true;  ///< inner knots repeated up to degree times now and then
+  /// Knot vector starts at a random u0 in [-10, 10] (else at 0). An offset far above the range
+  /// costs parameter resolution: a span of width du at u is resolved to eps |u| / du only.
+  bool offset_knots = true;
 };
 
 /// A random valid NURBS: random degree, points, non-uniform clamped knots (on a random
@@ -46,7 +49,7 @@ inline NurbsData random_nurbs(std::uint64_t seed, std::uint64_t index, const Ran
   for (int i = 0; i < n_points; ++i) d.points.emplace_back(uni(-0.5, 0.5) * o.size_mm, uni(-0.5, 0.5) * o.size_mm, uni(-0.5, 0.5) * o.size_mm);
   if (o.rational)
     for (int i = 0; i < n_points; ++i) d.weights.push_back(std::exp(uni(std::log(0.2), std::log(5.0))));
-  const double u0 = uni(-10.0, 10.0), range = std::exp(uni(std::log(0.1), std::log(100.0)));
+  const double u0 = o.offset_knots ? uni(-10.0, 10.0) : 0.0, range = std::exp(uni(std::log(0.1), std::log(100.0)));
   const int inner = n_points - d.degree - 1;
   std::vector<double> in;
   while (static_cast<int>(in.size()) < inner) {

@@ -1,0 +1,57 @@
+// The real-time contract: evaluation, stepping and u(s) allocate nothing (counted by replacing
+// the global operator new for this test binary).
+#include <gtest/gtest.h>
+#include <kontur/forward_difference.hpp>
+#include <kontur/interpolation.hpp>
+#include <kontur/length.hpp>
+#include <kontur/nurbs.hpp>
+
+#include "support/random_curves.hpp"
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+namespace {
+std::atomic<long> g_allocations{0};
+}
+
+void* operator new(std::size_t n) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace kontur {
+namespace {
+
+TEST(RealTime, EvaluationSteppingInterpolationAndInverseLengthDoNotAllocate) {
+  const NurbsCurve curve(testing::random_nurbs(testing::test_seed(), 3, {.min_degree = 3, .max_degree = 5}));
+  const SpanPolynomialCurve spans(curve);
+  const ArcLengthTable table(spans);
+  ForwardDifferenceStepper plain(spans, (curve.u_max() - curve.u_min()) / 5000.0, Summation::plain);
+  ForwardDifferenceStepper compensated(spans, (curve.u_max() - curve.u_min()) / 5000.0, Summation::compensated);
+  // Construction is planning and may allocate (the exact mode builds its arc-length table).
+  CurveInterpolator taylor1(spans, Interpolator::taylor_first_order);
+  CurveInterpolator taylor2(spans, Interpolator::taylor_second_order);
+  CurveInterpolator exact(spans, Interpolator::arc_length_exact);
+  double sink = 0.0;
+  const long before = g_allocations.load();
+  for (int i = 0; i <= 1000; ++i) {
+    const double u = curve.u_min() + (curve.u_max() - curve.u_min()) * i / 1000.0;
+    sink += curve.derivatives(u, 3)[3].x() + spans.derivatives(u, 3)[2].y();
+    sink += table.u_of_s(table.length_mm() * i / 1000.0) + table.s_of_u(u);
+  }
+  for (CurveInterpolator* ip : {&taylor1, &taylor2, &exact})
+    while (!ip->at_end()) sink += ip->advance(table.length_mm() / 3000.0);
+  while (plain.step()) sink += plain.point().x();
+  while (compensated.step()) sink += compensated.point().y();
+  const long after = g_allocations.load();
+  EXPECT_EQ(after - before, 0) << "allocations in the per-cycle path";
+  EXPECT_TRUE(std::isfinite(sink));
+}
+
+}  // namespace
+}  // namespace kontur
