@@ -10,6 +10,9 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <numbers>
 #include <string>
 #include <vector>
@@ -413,6 +416,35 @@ TEST(GcodeReader, OWordCallSeeksBackAcrossTheFileBuffer) {
   EXPECT_EQ(r.lines_read(), 20007);
   std::remove(path.c_str());
 }
+
+#if defined(__GLIBC__)
+// Streaming: the heap in use while a program is read does not grow with its length
+// (10^6 blocks with expressions and parameter assignments; sampled every 10^4 blocks).
+TEST(GcodeReader, HeapDoesNotGrowWithTheProgramsLength) {
+  const std::string path = ::testing::TempDir() + "kontur_stream_1e6.ngc";
+  {
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fprintf(f, "G21 G90 F1000\n#<_y> = 0\n");
+    for (int i = 0; i < 1000000; ++i) std::fprintf(f, "N%d G1 X%d.5 Y[#<_y> + 1] Z-1\n#<_y> = %d\n", i, i % 100, i % 7);
+    std::fclose(f);
+  }
+  std::size_t heap_at_10k = 0, heap_max = 0;
+  Reader reader(path);
+  Block b;
+  long blocks = 0;
+  while (reader.next(b)) {
+    if (++blocks % 10000 == 0) {
+      const std::size_t used = mallinfo2().uordblks;
+      if (blocks == 10000) heap_at_10k = used;
+      heap_max = std::max(heap_max, used);
+    }
+  }
+  EXPECT_EQ(blocks, 1000000);
+  EXPECT_LT(heap_max - heap_at_10k, std::size_t{64} * 1024) << "heap grew from " << heap_at_10k << " to " << heap_max;
+  std::remove(path.c_str());
+}
+#endif
 
 TEST(GcodeExpression, OperatorsFunctionsAndPrecedence) {
   ParameterTable p;
