@@ -2,7 +2,6 @@
 #include <kontur/helix_arc.hpp>
 
 #include <Eigen/Geometry>
-
 #include <fmt/format.h>
 
 #include <algorithm>

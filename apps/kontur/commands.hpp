@@ -17,6 +17,10 @@ enum ExitCode : int {
 void register_spline_command(CLI::App& app, int& exit_code);
 /// `kontur check PROGRAM`: validate a G-code program, print its blocks and totals.
 void register_check_command(CLI::App& app, int& exit_code);
+/// `kontur arc P1 P2 P3 ...`: circle through three points and the motion along it.
+void register_arc_command(CLI::App& app, int& exit_code);
+/// `kontur conic P1 .. P5 ...`: conic through five points and the motion along it.
+void register_conic_command(CLI::App& app, int& exit_code);
 
 /// `kontur machine [FILE]`: validate a machine file and print the limits in use.
 void register_machine_command(CLI::App& app, int& exit_code);

@@ -1,5 +1,8 @@
 #pragma once
 // Everything of Kontur's public interface in one include.
+#include <kontur/arc_motion.hpp>
+#include <kontur/circle_through_points.hpp>
+#include <kontur/conic_through_points.hpp>
 #include <kontur/curve.hpp>
 #include <kontur/differential.hpp>
 #include <kontur/error.hpp>
@@ -10,6 +13,7 @@
 #include <kontur/length.hpp>
 #include <kontur/line_segment.hpp>
 #include <kontur/machine.hpp>
+#include <kontur/machine_limits.hpp>
 #include <kontur/nurbs.hpp>
 #include <kontur/span_polynomial.hpp>
 #include <kontur/tolerances.hpp>

@@ -81,4 +81,31 @@ inline constexpr long gcode_max_loop_iterations = 10000000;
 /// Largest number of pecks of one G73 / G83 hole (Q too small for the depth is an error).
 inline constexpr int gcode_max_pecks = 10000;
 
+// ---- arcs and conics through points (methods.md sections 4 and 5)
+// Every test below is relative to the extent of the given points (their largest pairwise
+// distance [mm]), so that the same input scaled by any factor gives the same verdict.
+/// Two given points closer than this times the extent are coincident.
+inline constexpr double arc_coincident_relative = 1e-9;
+/// Three points are collinear when the smallest height of their triangle is below this times its
+/// longest side. For three points |n| = |(r2 - r1) x (r3 - r1)| = 2 area and det G = |n|^2 (seed
+/// (2.12)-(2.22)), so the test is |n| < arc_collinear_relative * longest^2: relative, never == 0.
+inline constexpr double arc_collinear_relative = 1e-9;
+/// Default largest distance of r4 and r5 from the plane of r1, r2, r3, times the extent. The user
+/// may give a looser absolute tolerance (part programs round coordinates to 1e-3 or 1e-4 mm).
+inline constexpr double conic_coplanar_relative = 1e-9;
+/// When e^2 (= 1 - lambda_axis / lambda_transverse) or |1 - e^2| of the fitted conic is below
+/// this, the best circle or parabola through the points is fitted too ...
+inline constexpr double conic_snap_candidate_relative = 1e-6;
+/// ... and the conic is a circle or a parabola when that curve passes within this times the
+/// extent of the five points (rounding of exact data gives about 1e-15).
+inline constexpr double conic_snap_fit_relative = 1e-11;
+/// A conic is degenerate (a pair of lines or a point) when the discriminant that gives its
+/// vertices, relative to its terms, is below this.
+inline constexpr double conic_degenerate_relative = 1e-12;
+/// Relative accuracy of the length of a conic arc (adaptive Gauss-Kronrod, asked 1e-13) that the
+/// tests and the documentation guarantee.
+inline constexpr double conic_length_relative = 1e-12;
+/// The last step of the angular modes reaches the end point to this, relative to the extent.
+inline constexpr double arc_end_point_relative = 1e-12;
+
 }  // namespace kontur::tolerances

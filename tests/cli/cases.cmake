@@ -53,3 +53,62 @@ kontur_cli_case(check_missing_file 1 "no-such-program\\.ngc: no such file" check
 kontur_cli_case(check_binary_file 1 "binary_file\\.ngc: not a text file" check tests/data/gcode/bad/binary_file.ngc)
 kontur_cli_case(check_json_error_exit 1 "kontur: error: .*conic_collinear\\.ngc:3:1: CONIC: points P0, P1 and P4 are collinear" check
                 --json tests/data/gcode/bad/conic_collinear.ngc)
+
+# kontur arc / kontur conic (methods.md sections 4 and 5)
+kontur_cli_case(arc_help 0 "Example" arc --help)
+kontur_cli_case(conic_help 0 "Example" conic --help)
+kontur_cli_case(arc_reference_1 0 "centre r0 = \\(100, 100, 50\\) mm, radius R = 10 mm.*t = 6\\.283185307 s.*V = l / t = 5 mm/s.*107\\.071068 +107\\.071068 +50\\.000000.*92\\.928932 +107\\.071068"
+                arc 110,100,50 100,110,50 90,100,50 --omega 0.5 --steps 4)
+kontur_cli_case(arc_reference_2 0 "radius R = 97\\.60388424 mm.*theta13 = 2\\.66696426 rad \\(152\\.8057965 deg\\).*omega = 0\\.2666964.*138\\.517634 +233\\.188777 +292\\.150597"
+                arc 100,200,300 200,250,310 260,180,400 --time 10 --steps 5)
+kontur_cli_case(arc_full_circle 0 "motion type 2.*arc angle theta = 6\\.28318531 rad \\(360 deg\\)"
+                arc 110,100,50 100,110,50 90,100,50 --full --omega 1 --steps 8)
+kontur_cli_case(arc_negative_coordinates 0 "radius R = 1 mm" arc -1,0,0 0,1,0 1,0,0 --time 2 --steps 2)
+kontur_cli_case(arc_csv 0 "^i,t_s,angle_rad,x_rel_mm,y_rel_mm,z_rel_mm,x_mm,y_mm,z_mm\n0,0,0,10,0,0,110,100,50\n"
+                arc 110,100,50 100,110,50 90,100,50 --omega 0.5 --steps 4 --csv)
+kontur_cli_case(arc_json 0 "\"radius_mm\": 10" arc 110,100,50 100,110,50 90,100,50 --omega 0.5 --steps 4 --json)
+kontur_cli_case(arc_feed_csv 0 "^k,t_s,s_mm,u,x_mm,y_mm,z_mm\n.*\n7,3\\.5,31\\.4159265358979[0-9]*,1,90,100,50\n$"
+                arc 110,100,50 100,110,50 90,100,50 --feed 600 --period 0.5 --csv)
+kontur_cli_case(arc_collinear 1 "^kontur: error: r1 \\(1, 1, 1\\), r2 \\(2, 2, 2\\) and r3 \\(3, 3, 3\\) are collinear"
+                arc 1,1,1 2,2,2 3,3,3 --omega 1 --steps 3)
+kontur_cli_case(arc_coincident 1 "^kontur: error: r1 \\(1, 1, 1\\) and r3 \\(1, 1, 1\\) coincide"
+                arc 1,1,1 2,2,2 1,1,1 --omega 1 --steps 3)
+kontur_cli_case(arc_omega_negative 1 "^kontur: error: --omega -1: the angular speed must be finite and > 0"
+                arc 1,1,1 2,2,2 3,3,4 --omega -1 --steps 3)
+kontur_cli_case(arc_time_zero 1 "^kontur: error: --time 0: the time must be finite and > 0"
+                arc 1,1,1 2,2,2 3,3,4 --time 0 --steps 3)
+kontur_cli_case(arc_steps_zero 1 "^kontur: error: --steps 0: N must be >= 1" arc 1,1,1 2,2,2 3,3,4 --omega 1 --steps 0)
+kontur_cli_case(arc_not_finite 1 "^kontur: error: r2\\.z = nan: every coordinate must be a finite number"
+                arc 1,1,1 2,2,nan 3,3,4 --omega 1 --steps 2)
+kontur_cli_case(arc_bad_point 1 "^kontur: error: P2 = '2,2': a point is x,y,z" arc 1,1,1 2,2 3,3,4 --omega 1 --steps 2)
+kontur_cli_case(arc_outside_limits 1 "^kontur: error: r2: y = 110 mm is above the machine limit 105 mm\n$"
+                arc 110,100,50 100,110,50 90,100,50 --omega 1 --steps 2 --limits 1,1,1,5000,105,5000)
+kontur_cli_case(arc_bulges_outside_limits 1 "^kontur: error: step 1: y = 110(\\.0+[0-9]*)? mm is above the machine limit 109 mm"
+                arc 110,100,50 107.0710678118655,107.0710678118655,50 90,100,50 --omega 1 --steps 2 --limits 0,0,0,200,109,200)
+kontur_cli_case(arc_no_mode 1 "give --omega W or --time T" arc 1,1,1 2,2,2 3,3,4)
+kontur_cli_case(arc_both_modes 1 "give one of them" arc 1,1,1 2,2,2 3,3,4 --omega 1 --time 2 --steps 2)
+kontur_cli_case(conic_reference_ellipse 0 "type: ellipse.*a = 5 mm, b = 3 mm, focal distance c = 4 mm.*theta15 = 2\\.92027821 rad \\(167\\.3196165 deg\\).*t = 5\\.840556422 s.*104\\.840316 +200\\.451271 +300\\.601695.*102\\.048748 +201\\.641957 +302\\.189275"
+                conic 105,200,300 104,201.08,301.44 103,201.44,301.92 100,201.8,302.4 96,201.08,301.44 --omega 0.5 --steps 4)
+kontur_cli_case(conic_reference_parabola 0 "type: parabola.*focal parameter p = 2 mm.*theta15 = 4\\.71238898 rad \\(270 deg\\).*t = 9\\.424777961 s"
+                conic 96,202.4,303.2 98,200.6,300.8 100,200,300 102,200.6,300.8 106,205.4,307.2 --omega 0.5 --steps 4)
+kontur_cli_case(conic_reference_hyperbola 0 "type: hyperbola.*e = 1\\.25.*p = 2\\.25 mm.*a = 4 mm, b = 3 mm, focal distance c = 5 mm.*243\\.7815836 deg.*t = 8\\.509582579 s"
+                conic 108.5,196.625,295.5 105,198.65,298.2 104,200,300 105,201.35,301.8 108.5,203.375,304.5 --omega 0.5 --steps 4)
+kontur_cli_case(conic_json 0 "\"type\": \"ellipse\"" conic 105,200,300 104,201.08,301.44 103,201.44,301.92
+                100,201.8,302.4 96,201.08,301.44 --time 2 --steps 4 --json)
+kontur_cli_case(conic_feed 0 "constant feed F = 600 mm/min.*0\\.01 mm per period"
+                conic 105,200,300 104,201.08,301.44 103,201.44,301.92 100,201.8,302.4 96,201.08,301.44 --feed 600 --period 0.001)
+kontur_cli_case(conic_not_coplanar 1 "^kontur: error: r5 \\(96, 201\\.08, 301\\.5\\) is 0\\.0[0-9]+ mm from the plane of r1, r2, r3 \\(tolerance 9\\.1[0-9]e-09 mm\\)"
+                conic 105,200,300 104,201.08,301.44 103,201.44,301.92 100,201.8,302.4 96,201.08,301.5 --omega 1 --steps 4)
+kontur_cli_case(conic_plane_tolerance 0 "type: ellipse" conic 105,200,300 104,201.08,301.44 103,201.44,301.92
+                100,201.8,302.4 96,201.08,301.4401 --omega 1 --steps 4 --plane-tolerance 0.001)
+kontur_cli_case(conic_collinear 1 "^kontur: error: r1, r2 and r3 are collinear.*two intersecting lines"
+                conic 0,0,0 2,0,0 5,0,0 8,2,0 6,4,0 --omega 1 --steps 4)
+kontur_cli_case(conic_parallel_lines 1 "two parallel lines" conic 0,0,0 2,0,0 5,0,0 8,2,0 1,2,0 --omega 1 --steps 4)
+kontur_cli_case(conic_not_in_order 1 "^kontur: error: the points are not in order along one arc of the ellipse"
+                conic 105,200,300 104,201.08,301.44 100,201.8,302.4 103,201.44,301.92 96,201.08,301.44 --omega 1 --steps 4)
+kontur_cli_case(conic_two_branches 1 "^kontur: error: r4 \\(95, 201\\.35, 301\\.8\\) lies on the other branch"
+                conic 108.5,196.625,295.5 105,198.65,298.2 104,200,300 95,201.35,301.8 91.5,203.375,304.5 --omega 1 --steps 4)
+kontur_cli_case(conic_coincident 1 "coincide" conic 1,0,0 0,1,0 1,0,0 0,-1,0 2,2,0 --omega 1 --steps 4)
+kontur_cli_case(conic_outside_limits 1 "^kontur: error: r1: x = 105 mm is above the machine limit 104 mm"
+                conic 105,200,300 104,201.08,301.44 103,201.44,301.92 100,201.8,302.4 96,201.08,301.44 --omega 1 --steps 4
+                --limits 0,0,0,104,400,400)

@@ -1,0 +1,160 @@
+// `kontur arc P1 P2 P3 (--omega W | --time T) --steps N`: the circle through three points and
+// the motion along it, with the report of the seed's program ARC (methods.md section 4), and
+// Kontur's constant-feed mode (--feed F --period T).
+#include "arc_output.hpp"
+#include "commands.hpp"
+
+#include <kontur/arc_motion.hpp>
+#include <kontur/circle_through_points.hpp>
+#include <kontur/error.hpp>
+#include <kontur/length.hpp>
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+namespace kontur::app {
+namespace {
+
+struct ArcOptions {
+  std::string p1, p2, p3;
+  bool full = false;
+  ArcMotionOptions motion;
+};
+
+constexpr double deg = 180.0 / std::numbers::pi;
+
+std::string angle_text(double rad) { return fmt::format("{} rad ({} deg)", num(rad, 9), num(rad * deg, 10)); }
+
+void run_arc(const ArcOptions& o) {
+  validate_motion_options(o.motion);
+  const auto limits = parse_limits(o.motion.limits);
+  const Vec3 r1 = parse_point(o.p1, "P1"), r2 = parse_point(o.p2, "P2"), r3 = parse_point(o.p3, "P3");
+  if (limits) {
+    check_inside_limits(*limits, r1, "r1");
+    check_inside_limits(*limits, r2, "r2");
+    check_inside_limits(*limits, r3, "r3");
+  }
+  const CircleThroughPoints c =
+      circle_through_points(r1, r2, r3, o.full ? CircleMotion::full_circle : CircleMotion::arc);
+  const HelixArc arc = c.curve();
+
+  // Everything is computed and checked before anything is printed.
+  const bool angular = o.motion.omega || o.motion.time;
+  std::optional<AngularTiming> timing;
+  std::vector<AngularRow> rows;
+  std::vector<MotionSample> angular_samples;
+  if (angular) {
+    timing = angular_timing(c.sweep_rad, c.length_mm, problem_of(o.motion), problem_value(o.motion), *o.motion.steps);
+    const AngularStepper stepper(arc, *timing, c.end_point());
+    for (int i = 0; i < stepper.samples(); ++i) {
+      AngularRow r;
+      r.sample = stepper.sample(i);
+      r.angle_rad = r.sample.u * c.sweep_rad;
+      r.relative = apply(c.to_relative, r.sample.point);
+      rows.push_back(r);
+      angular_samples.push_back(r.sample);
+    }
+  }
+  const ArcLengthTable table(arc);
+  std::optional<ConstantFeedStepper> feed;
+  std::vector<MotionSample> feed_samples;
+  if (o.motion.feed) {
+    feed.emplace(arc, table, c.end_point(), *o.motion.feed, *o.motion.period, 10'000'000);
+    for (long k = 0; k < feed->samples(); ++k) feed_samples.push_back(feed->sample(k));
+  }
+  if (limits) {
+    check_path_inside(*limits, arc, angular_samples, "step");
+    for (std::size_t k = 0; k < feed_samples.size(); ++k)
+      check_inside_limits(*limits, feed_samples[k].point, fmt::format("period {}", k));
+  }
+  const char* seen_from_z = c.normal.z() > 0.0 ? "counter-clockwise" : c.normal.z() < 0.0 ? "clockwise" : "edge-on";
+
+  if (o.motion.csv) {
+    if (angular) print_angular_csv(rows);
+    else print_feed_csv(feed_samples);
+    return;
+  }
+  if (o.motion.json) {
+    nlohmann::ordered_json j;
+    j["points_mm"] = {point_json(r1), point_json(r2), point_json(r3)};
+    j["motion_type"] = o.full ? 2 : 1;
+    j["centre_mm"] = point_json(c.centre);
+    j["radius_mm"] = c.radius_mm;
+    j["normal"] = point_json(c.normal);
+    j["T"] = matrix_json(c.to_machine);
+    j["T_inverse"] = matrix_json(c.to_relative);
+    j["relative_points_mm"] = {point_json(c.relative_points[0]), point_json(c.relative_points[1]),
+                               point_json(c.relative_points[2])};
+    j["theta12_rad"] = c.theta12_rad;
+    j["theta13_rad"] = c.theta13_rad;
+    j["sweep_rad"] = c.sweep_rad;
+    j["direction"] = "counter-clockwise about the normal";
+    j["seen_from_plus_z"] = seen_from_z;
+    j["length_mm"] = c.length_mm;
+    if (timing) {
+      j["problem_type"] = o.motion.omega ? 1 : 2;
+      j["omega_rad_s"] = timing->omega_rad_s;
+      j["time_s"] = timing->time_s;
+      j["steps"] = timing->steps;
+      j["speed_mm_s"] = timing->mean_speed_mm_s;
+      j["dt_s"] = timing->dt_s;
+      j["dphi_rad"] = timing->dphi_rad;
+      j["table"] = angular_json(rows);
+    }
+    if (feed) j["constant_feed"] = feed_json(*feed, feed_samples);
+    fmt::print("{}\n", j.dump(2));
+    return;
+  }
+
+  fmt::print("kontur arc: circle through three points (the seed's program ARC)\n");
+  fmt::print("input [mm]\n  r1 = {}\n  r2 = {}\n  r3 = {}\n", point_text(r1), point_text(r2), point_text(r3));
+  fmt::print("motion type {}: {}\n", o.full ? 2 : 1,
+             o.full ? "full circle from r1 through r2, r3 back to r1" : "arc from r1 through r2 to r3");
+  if (limits) fmt::print("machine limits [mm]: {} .. {}\n", point_text(limits->min_mm), point_text(limits->max_mm));
+  fmt::print("\ncentre r0 = {} mm, radius R = {} mm\n", point_text(c.centre), num(c.radius_mm));
+  fmt::print("plane normal n = {}\n", point_text(c.normal));
+  fmt::print("\nT (relative -> machine, homogeneous):\n{}", matrix_text(c.to_machine));
+  fmt::print("T^-1 (machine -> relative):\n{}", matrix_text(c.to_relative));
+  fmt::print("\nrelative coordinates [mm] (origin r0, x' towards r1, z' along n)\n");
+  for (std::size_t j = 0; j < 3; ++j) fmt::print("  r{} = {}\n", j + 1, point_fixed(c.relative_points[j]));
+  fmt::print("\n|r0 rj| = R; cos theta12 = {}, cos theta13 = {}\n", fixed(std::cos(c.theta12_rad), 10),
+             fixed(std::cos(c.theta13_rad), 10));
+  fmt::print("angles: theta12 = {}, theta13 = {}\n", angle_text(c.theta12_rad), angle_text(c.theta13_rad));
+  fmt::print("direction: counter-clockwise about n ({} seen from +z)\n", seen_from_z);
+  fmt::print("arc angle theta = {}, length l = R theta = {} mm\n", angle_text(c.sweep_rad), num(c.length_mm));
+  if (timing) {
+    fmt::print("\nproblem type {}: {}\n", o.motion.omega ? 1 : 2,
+               o.motion.omega ? "omega given, t = theta / omega" : "t given, omega = theta / t");
+    fmt::print("omega = {} rad/s\nt = {} s\nN = {}\nV = l / t = {} mm/s\ndt = {} s\ndphi = {}\n",
+               num(timing->omega_rad_s), num(timing->time_s), timing->steps, num(timing->mean_speed_mm_s),
+               num(timing->dt_s), angle_text(timing->dphi_rad));
+    print_angular_table(rows, "phi", "relative");
+  }
+  if (feed) print_feed_table(*feed, feed_samples);
+}
+
+}  // namespace
+
+void register_arc_command(CLI::App& app, int& exit_code) {
+  auto opts = std::make_shared<ArcOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "arc", "Circle through three points in space (the seed's program ARC): centre, frames, angles, and the motion "
+             "from P1 through P2 to P3 in N equal angle steps, or at a constant feed.");
+  cmd->add_option("P1", opts->p1, "start point x,y,z [mm]")->required();
+  cmd->add_option("P2", opts->p2, "intermediate point x,y,z [mm]")->required();
+  cmd->add_option("P3", opts->p3, "end point x,y,z [mm]")->required();
+  cmd->add_flag("--full", opts->full, "motion type 2: the full circle from P1 through P2, P3 back to P1");
+  add_motion_options(cmd, opts->motion);
+  cmd->footer("Example:\n  kontur arc 110,100,50 100,110,50 90,100,50 --omega 0.5 --steps 4\n"
+              "  kontur arc 100,200,300 200,250,310 260,180,400 --feed 600 --period 0.001 --csv\n"
+              "Exit codes: 0 success, 1 invalid input (points, values, limits), 2 wrong command line.");
+  cmd->callback([opts, &exit_code]() {
+    run_arc(*opts);
+    exit_code = exit_ok;
+  });
+}
+
+}  // namespace kontur::app
