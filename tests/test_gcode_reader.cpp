@@ -234,13 +234,15 @@ TEST(GcodeReader, CircleThroughAnIntermediatePoint) {
   expect_consistent(inc);
 }
 
-TEST(GcodeReader, ConicBlockKeepsItsFivePoints) {
+TEST(GcodeReader, ConicBlockThroughItsFivePoints) {
   const auto b = read("G0 X0 Y0 Z0\nF100\nCONIC X10 Y0 Z0 I1=1 J1=3 K1=0 I2=5 J2=4 K2=0 I3=9 J3=3 K3=0\nG1 X0\n");
   ASSERT_EQ(b.size(), 3u);
   const Block& c = b[1];
   EXPECT_EQ(c.type, BlockType::conic);
-  EXPECT_EQ(c.curve(), nullptr);
-  EXPECT_FALSE(c.length_mm().has_value());
+  ASSERT_NE(c.curve(), nullptr);
+  expect_consistent(c, 1e-9);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(distance_to(*c.curve(), c.via[static_cast<std::size_t>(i)]), 0.0, 1e-3);
+  EXPECT_GT(*c.length_mm(), 12.0);
   EXPECT_EQ(c.via_count, 3);
   expect_near(c.via[1], Vec3(5, 4, 0));
   expect_near(c.end, Vec3(10, 0, 0));

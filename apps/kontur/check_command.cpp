@@ -79,7 +79,7 @@ void run_check(const CheckOptions& o) {
     gcode::check_program(o.file, ro, [](const gcode::Block& b, std::optional<double> len) {
       fmt::print("{:>8} {:>7} {:<10} {:>16} {}{}\n", b.location.line,
                  b.location.n_number >= 0 ? fmt::format("N{}", b.location.n_number) : std::string(),
-                 gcode::to_string(b.type), len ? num(*len) : std::string("n/a until conic geometry lands"),
+                 gcode::to_string(b.type), len ? num(*len) : std::string("n/a"),
                  feed_text(b), b.canned_cycle ? fmt::format(" (G{})", b.canned_cycle) : std::string());
     });
   }
@@ -94,8 +94,7 @@ void run_check(const CheckOptions& o) {
     }
   fmt::print("{}\n", first ? "none" : "");
   fmt::print("path length {} mm (feed moves{})\n", num(s.path_length_mm),
-             s.blocks_without_length ? fmt::format("; {} conic blocks not counted: n/a until conic geometry lands",
-                                                   s.blocks_without_length)
+             s.blocks_without_length ? fmt::format("; {} blocks without a length not counted", s.blocks_without_length)
                                      : std::string());
   fmt::print("rapid       {} mm\n", num(s.rapid_length_mm));
   if (s.dwell_s > 0.0) fmt::print("dwell       {} s\n", s.dwell_s);
@@ -121,7 +120,8 @@ void register_check_command(CLI::App& app, int& exit_code) {
       "  the conic from the current position through the three intermediate points (I1 J1 K1), (I2 J2 K2),\n"
       "  (I3 J3 K3), in this order, to the end point X Y Z; all nine intermediate words are required;\n"
       "  G91 makes them relative to the start point. The five points must be distinct, no three collinear,\n"
-      "  all in one plane. Its length is reported as n/a until the conic geometry lands.\n"
+      "  all in one plane (within 0.001 mm) and in order along one arc of the conic; in messages they are\n"
+      "  r1 (start), r2, r3, r4 (I1.., I2.., I3..) and r5 (end).\n"
       "3-D circle through an intermediate point: CIP X- Y- Z- I1=- J1=- K1=- (Sinumerik) or\n"
       "  G02.4 X- Y- Z- (intermediate point) followed by X- Y- Z- (end point) (Fanuc).\n"
       "See docs/gcode.md for the whole syntax, the errors and the unsupported features.\n"

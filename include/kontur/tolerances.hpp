@@ -49,14 +49,13 @@ inline constexpr double gcode_arc_radius_absolute_mm = 0.005;
 inline constexpr double gcode_arc_radius_relative = 1e-3;
 /// (An R-form arc whose chord exceeds 2 |R| by at most that tolerance is taken as a half circle.)
 /// Two points closer than this are the same point: the end of a full circle, the first control point
-/// of a G06.2 / G6.2 curve and the current position, coincident points of a 3-D circle or a conic.
+/// of a G06.2 / G6.2 curve and the current position. (3-D circles and conics use the
+/// arc_coincident_relative and arc_collinear_relative tests of circle/conic_through_points.)
 inline constexpr double gcode_same_point_mm = 1e-4;
-/// Three points are collinear (no circle or conic through them) when the sine of the angle between
-/// the chords (r2 - r1) and (r3 - r1) is below this.
-inline constexpr double gcode_collinear_sine = 1e-9;
-/// The five points of a conic lie in one plane when each is within this distance of the plane of
-/// the first three, relative to the points' extent.
-inline constexpr double gcode_conic_coplanar_relative = 1e-6;
+/// The five points of a CONIC block lie in one plane when the fourth and fifth are within this
+/// distance of the plane of the first three [mm] (ConicOptions::plane_tolerance_mm): programs round
+/// coordinates to 1e-3 mm.
+inline constexpr double gcode_conic_plane_mm = 1e-3;
 /// Retract distance between pecks of G73 and clearance above the hole bottom of G83 (as LinuxCNC:
 /// 0.010 in), [mm].
 inline constexpr double gcode_peck_clearance_mm = 0.254;

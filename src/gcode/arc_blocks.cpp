@@ -1,8 +1,8 @@
 // Circular blocks: G2 / G3 arcs and helices in a plane (I J K or R, P turns), the 3-D circle
 // through an intermediate point (Sinumerik CIP, Fanuc G02.4 / G03.4), and Kontur's CONIC block.
 #include "interpreter.hpp"
-#include "circle_through_three_points.hpp"
-#include "conic_points.hpp"
+#include <kontur/circle_through_points.hpp>
+#include <kontur/conic_through_points.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -125,7 +125,7 @@ void Reader::Impl::emit_circle(const Vec3& mid, const Vec3& to, int col, const s
 }
 
 HelixArc Reader::Impl::make_circle_3d(const Vec3& r1, const Vec3& r2, const Vec3& r3) {
-  return detail::circle_through_three_points(r1, r2, r3);
+  return circle_through_points(r1, r2, r3).curve();
 }
 
 void Reader::Impl::circle_block(int motion, int col) {
@@ -190,17 +190,17 @@ void Reader::Impl::conic(const Vec3& to, int col) {
                          names[a], p + 1));
   if (!has_axes()) fail(col, "conic-words", "CONIC: end point missing (X Y Z)");
   const Feed feed = feed_move("CONIC");
-  const std::array<Vec3, 5> pts{pos, indexed_point(0), indexed_point(1), indexed_point(2), to};
-  at(col, "CONIC", [&] {
-    detail::check_conic_points(pts);
-    return 0;
-  });
+  const std::array<Vec3, 5> pts{to_machine(pos), to_machine(indexed_point(0)), to_machine(indexed_point(1)),
+                                 to_machine(indexed_point(2)), to_machine(to)};
   Block b = make_block(BlockType::conic, col);
-  b.start = to_machine(pos);
-  b.end = to_machine(to);
-  for (int i = 0; i < 3; ++i) b.via[static_cast<std::size_t>(i)] = to_machine(pts[static_cast<std::size_t>(i + 1)]);
+  b.start = pts[0];
+  b.end = pts[4];
+  for (int i = 0; i < 3; ++i) b.via[static_cast<std::size_t>(i)] = pts[static_cast<std::size_t>(i + 1)];
   b.via_count = 3;
   b.feed = feed;
+  ConicOptions options;
+  options.plane_tolerance_mm = tolerances::gcode_conic_plane_mm;  // programs round coordinates
+  b.geometry.emplace<ConicArc>(at(col, "CONIC", [&] { return conic_through_points(pts, options).curve(); }));
   emit(std::move(b));
   pos = to;
 }

@@ -23,6 +23,7 @@ const Curve* Block::curve() const noexcept {
   if (const auto* l = std::get_if<LineSegment>(&geometry)) return l;
   if (const auto* a = std::get_if<HelixArc>(&geometry)) return a;
   if (const auto* n = std::get_if<NurbsCurve>(&geometry)) return n;
+  if (const auto* c = std::get_if<ConicArc>(&geometry)) return c;
   return nullptr;
 }
 
@@ -33,6 +34,7 @@ std::optional<double> Block::length_mm() const {
     const SpanPolynomialCurve spans(*n);  // faster to integrate than the NURBS itself
     return gauss_kronrod_length(spans).length_mm;
   }
+  if (const auto* c = std::get_if<ConicArc>(&geometry)) return gauss_kronrod_length(*c).length_mm;
   if (type == BlockType::dwell) return 0.0;
   return std::nullopt;
 }

@@ -3,6 +3,7 @@
 // length and shape come from one place), its feed, the modal state it runs in and where it came
 // from. All lengths are in [mm] and in machine coordinates (work offsets, G92 and the XY rotation
 // of G10 L2 R applied), whatever G20/G21 the program uses.
+#include <kontur/conic_through_points.hpp>
 #include <kontur/curve.hpp>
 #include <kontur/helix_arc.hpp>
 #include <kontur/line_segment.hpp>
@@ -25,7 +26,7 @@ enum class BlockType {
   circle_3d,  ///< Sinumerik CIP or Fanuc G02.4/G03.4: circle through start, intermediate and end point
   nurbs,      ///< G06.2 / G6.2 (Fanuc, Mitsubishi, LinuxCNC) or G5.2/G5.3 (LinuxCNC): a NurbsCurve
   bezier,     ///< G5 (cubic) or G5.1 (quadratic) Bezier of LinuxCNC: a NurbsCurve
-  conic,      ///< Kontur's CONIC block through five points; geometry not built yet (see docs/gcode.md)
+  conic,      ///< Kontur's CONIC block: the arc of the conic through five points, a ConicArc
   dwell,      ///< G4 P, or the dwell of G82: no geometry
 };
 /// Number of block types.
@@ -83,8 +84,8 @@ struct SourceLocation {
   long n_number = -1;  ///< the block's N number, -1 if it has none
 };
 
-/// The geometry of a block (monostate for dwell and, for now, conic blocks).
-using Geometry = std::variant<std::monostate, LineSegment, HelixArc, NurbsCurve>;
+/// The geometry of a block (monostate for a dwell).
+using Geometry = std::variant<std::monostate, LineSegment, HelixArc, NurbsCurve, ConicArc>;
 
 /// One block of motion (or a dwell), ready for planning.
 struct Block {
@@ -102,10 +103,11 @@ struct Block {
   int via_count = 0;                 ///< how many entries of `via` are used
   int canned_cycle = 0;              ///< 81, 82, 83 or 73 if the move was expanded from that cycle, else 0
 
-  /// The block's curve, or nullptr for dwell and conic blocks.
+  /// The block's curve, or nullptr for a dwell.
   [[nodiscard]] const Curve* curve() const noexcept;
   /// Length of the path [mm]: exact for lines, arcs and helices, adaptive Gauss-Kronrod on the span
-  /// polynomials for NURBS and Beziers, 0 for a dwell; empty for a conic (geometry not built yet).
+  /// polynomials for NURBS and Beziers, adaptive Gauss-Kronrod for a conic, 0 for a dwell; empty only
+  /// for a block without geometry other than a dwell (none at present).
   [[nodiscard]] std::optional<double> length_mm() const;
 };
 
