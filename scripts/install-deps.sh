@@ -8,6 +8,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
   libtbb-dev  # OpenCASCADE's CMake targets name libtbb.so, which only the -dev package installs
+  clang libclang-rt-14-dev  # the libFuzzer target of the G-code reader (fuzz/, docs/gcode.md)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -15,6 +15,8 @@ enum ExitCode : int {
 
 /// `kontur spline FILE`: validate a curve, print its span polynomials, lengths, differences.
 void register_spline_command(CLI::App& app, int& exit_code);
+/// `kontur check PROGRAM`: validate a G-code program, print its blocks and totals.
+void register_check_command(CLI::App& app, int& exit_code);
 /// `kontur arc P1 P2 P3 ...`: circle through three points and the motion along it.
 void register_arc_command(CLI::App& app, int& exit_code);
 /// `kontur conic P1 .. P5 ...`: conic through five points and the motion along it.

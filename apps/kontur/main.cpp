@@ -19,12 +19,16 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer("Example:\n  kontur spline examples/curves/seed_example1.json --step 0.05\n"
              "  kontur arc 110,100,50 100,110,50 90,100,50 --omega 0.5 --steps 4\n"
+             "  kontur check program.ngc\n"
+             "G-code: RS274 core with LinuxCNC, Fanuc and Sinumerik extensions; Kontur's own conic block is\n"
+             "  CONIC X- Y- Z- I1=- J1=- K1=- I2=- J2=- K2=- I3=- J3=- K3=- (see `kontur check --help`).\n"
              "Run `kontur SUBCOMMAND --help` for the options of each subcommand.");
   int exit_code = exit_ok;
   register_spline_command(app, exit_code);
   register_machine_command(app, exit_code);
   register_arc_command(app, exit_code);
   register_conic_command(app, exit_code);
+  register_check_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -38,6 +38,48 @@ inline constexpr int inverse_length_max_iterations = 60;
 /// that the tests and the documentation guarantee.
 inline constexpr double forward_difference_drift_relative = 1e-9;
 
+
+// ---- G-code programs (kontur/gcode); all in [mm] after unit conversion (1 in = 25.4 mm)
+/// Arc radius check of a control: the distances from the centre to the start and to the end of a
+/// G2/G3 arc (or |R| and the I J K radius when both are given) may differ by at most
+/// max(gcode_arc_radius_absolute_mm, gcode_arc_radius_relative * radius). The curve uses the
+/// start radius; its end is then within this distance of the programmed end point.
+inline constexpr double gcode_arc_radius_absolute_mm = 0.005;
+/// Relative part of the arc radius check (0.1 % of the radius).
+inline constexpr double gcode_arc_radius_relative = 1e-3;
+/// (An R-form arc whose chord exceeds 2 |R| by at most that tolerance is taken as a half circle.)
+/// Two points closer than this are the same point: the end of a full circle, the first control point
+/// of a G06.2 / G6.2 curve and the current position. (3-D circles and conics use the
+/// arc_coincident_relative and arc_collinear_relative tests of circle/conic_through_points.)
+inline constexpr double gcode_same_point_mm = 1e-4;
+/// The five points of a CONIC block lie in one plane when the fourth and fifth are within this
+/// distance of the plane of the first three [mm] (ConicOptions::plane_tolerance_mm): programs round
+/// coordinates to 1e-3 mm.
+inline constexpr double gcode_conic_plane_mm = 1e-3;
+/// Retract distance between pecks of G73 and clearance above the hole bottom of G83 (as LinuxCNC:
+/// 0.010 in), [mm].
+inline constexpr double gcode_peck_clearance_mm = 0.254;
+/// Longest accepted program line [characters]; longer lines are an error, so memory per line is bounded.
+inline constexpr int gcode_max_line_length = 4096;
+/// Largest number of LinuxCNC P turns of a G2/G3 arc (more is an error, not a hang).
+inline constexpr int gcode_max_arc_turns = 10000;
+/// Largest number of repeats L of a canned cycle.
+inline constexpr int gcode_max_cycle_repeats = 10000;
+/// Largest number of control points of one spline block (G06.2, G5.2): bounds the memory of the reader.
+inline constexpr int gcode_max_spline_points = 100000;
+/// Largest number of moves one canned-cycle block may expand into (repeats L times pecks).
+inline constexpr int gcode_max_cycle_moves = 100000;
+/// Largest coordinate, offset, radius or distance a program may reach [mm] (1 km): beyond it a
+/// program is in error, which keeps every length and point finite.
+inline constexpr double gcode_max_coordinate_mm = 1e6;
+/// Largest feed F [mm/min or 1/min], dwell [s] and NURBS weight or knot magnitude a program may give.
+inline constexpr double gcode_max_value = 1e9;
+/// Default largest number of O-word loop iterations and subroutine calls of a whole program
+/// (ReaderOptions::max_loop_iterations): more is taken as an endless loop.
+inline constexpr long gcode_max_loop_iterations = 10000000;
+/// Largest number of pecks of one G73 / G83 hole (Q too small for the depth is an error).
+inline constexpr int gcode_max_pecks = 10000;
+
 // ---- arcs and conics through points (methods.md sections 4 and 5)
 // Every test below is relative to the extent of the given points (their largest pairwise
 // distance [mm]), so that the same input scaled by any factor gives the same verdict.

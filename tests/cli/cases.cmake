@@ -30,6 +30,30 @@ kontur_cli_case(machine_default 0 "max_jerk = 50000" machine)
 kontur_cli_case(machine_linuxcnc_ini 0 "max_velocity = 203\\.2" machine ../shared/data/gcode/linuxcnc-tp/configs/XYZ.ini)
 kontur_cli_case(machine_missing_file 1 "nowhere\\.toml: no such file" machine nowhere.toml)
 
+
+# kontur check: G-code programs (docs/gcode.md)
+kontur_cli_case(check_help 0 "CONIC X- Y- Z- I1=- J1=- K1=- I2=- J2=- K2=- I3=- J3=- K3=-" check --help)
+kontur_cli_case(help_mentions_check 0 "check.*CONIC" --help)
+kontur_cli_case(check_all_block_types 0
+                "N200 conic +24\\.834694 .*5 rapid, 2 line, 1 arc, 1 helix, 2 circle_3d, 1 nurbs, 2 bezier, 1 conic, 1 dwell.*path length 210\\.8025"
+                check tests/data/gcode/good/all_block_types.ngc)
+kontur_cli_case(check_json 0 "\"type\": \"circle_3d\".*\"path_length_mm\": 210\\.8025" check --json
+                tests/data/gcode/good/all_block_types.ngc)
+kontur_cli_case(check_3d_chips 0 "4681 line.*path length 5814\\.068986 mm" check --quiet ../shared/data/gcode/3D_Chips.ngc)
+kontur_cli_case(check_g6_nurbs_warning 0 "1 nurbs.*warning: G6\\.2 Q1: LinuxCNC's approximation" check
+                ../shared/data/gcode/linuxcnc-nurbs/G6_homer-16_n1-1-xy.ngc)
+kontur_cli_case(check_knot_count 1
+                "kontur: error: tests/data/gcode/bad/knot_count\\.ngc:3:1: G06\\.2: 9 knots given, 10 needed \\(6 control points \\+ rank 4\\)"
+                check tests/data/gcode/bad/knot_count.ngc)
+kontur_cli_case(check_division_by_zero 1 "division_by_zero\\.ngc:2:7: '/0\\]': division by zero" check
+                tests/data/gcode/bad/division_by_zero.ngc)
+kontur_cli_case(check_unsupported_g33 1 "g33_simple\\.ngc:4:1: G33: spindle-synchronised motion" check
+                ../shared/data/gcode/linuxcnc-tp/spindle/g33_simple.ngc)
+kontur_cli_case(check_missing_file 1 "no-such-program\\.ngc: no such file" check no-such-program.ngc)
+kontur_cli_case(check_binary_file 1 "binary_file\\.ngc: not a text file" check tests/data/gcode/bad/binary_file.ngc)
+kontur_cli_case(check_json_error_exit 1 "kontur: error: .*conic_collinear\\.ngc:3:1: CONIC: r1, r2 and r5 are collinear" check
+                --json tests/data/gcode/bad/conic_collinear.ngc)
+
 # kontur arc / kontur conic (methods.md sections 4 and 5)
 kontur_cli_case(arc_help 0 "Example" arc --help)
 kontur_cli_case(conic_help 0 "Example" conic --help)

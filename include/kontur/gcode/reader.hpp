@@ -1,0 +1,88 @@
+#pragma once
+// The G-code front end: a part program in, a stream of blocks out (docs/gcode.md has the syntax).
+//
+// Streaming: the Reader reads the program line by line through a fixed buffer and keeps only the
+// modal state, the parameters and the spline being collected; its memory does not grow with the
+// program's length.
+//
+// Errors: the first broken rule throws InputError("file:line:column: WORD: rule"). Because a
+// reader streams, blocks before the error have already been handed out when it is found. The
+// contract for later stages is therefore two passes: for_each_block() (and `kontur check`) first
+// reads the whole program without keeping any block, and only if it is valid reads it again and
+// hands the blocks out. A program with an error so yields no block to later stages.
+#include <kontur/gcode/block.hpp>
+#include <kontur/tolerances.hpp>
+
+#include <array>
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace kontur::gcode {
+
+/// Reader settings.
+struct ReaderOptions {
+  /// Block delete switch: lines starting with '/' are skipped when true (the default), read when false.
+  bool block_delete = true;
+  /// Warnings kept in Reader::warnings() (the count goes on beyond).
+  std::size_t max_warnings_kept = 100;
+  /// O-word loop iterations and subroutine calls allowed in the whole program; more is an error
+  /// (an endless loop). Default tolerances::gcode_max_loop_iterations.
+  long max_loop_iterations = tolerances::gcode_max_loop_iterations;
+};
+
+/// Reads a program and hands out its blocks one by one.
+class Reader {
+public:
+  /// Opens the file `path`; throws InputError if it does not exist or is not a text file.
+  explicit Reader(const std::string& path, ReaderOptions options = {});
+  /// Reads the program from memory (`text`); `name` is used in messages. The text is copied.
+  Reader(std::string_view name, std::string text, ReaderOptions options = {});
+  ~Reader();
+  Reader(const Reader&) = delete;
+  Reader& operator=(const Reader&) = delete;
+  Reader(Reader&&) noexcept;
+  Reader& operator=(Reader&&) noexcept;
+
+  /// Next block into `out`; false at the end of the program (M2, M30, the closing '%' or the end of
+  /// the file). Throws InputError at the first error.
+  bool next(Block& out);
+  /// Warnings so far ("file:line:column: message"), at most options.max_warnings_kept of them.
+  [[nodiscard]] const std::vector<std::string>& warnings() const noexcept;
+  /// Number of warnings so far (including those not kept).
+  [[nodiscard]] std::size_t warning_count() const noexcept;
+  /// Lines read so far.
+  [[nodiscard]] long lines_read() const noexcept;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Totals of a checked program.
+struct ProgramSummary {
+  long lines = 0;                                  ///< lines read
+  long blocks = 0;                                 ///< blocks handed out
+  std::array<long, block_type_count> by_type{};    ///< blocks per BlockType
+  double path_length_mm = 0.0;                     ///< length of all feed moves [mm] (conics not counted)
+  double rapid_length_mm = 0.0;                    ///< length of all rapid moves [mm]
+  double dwell_s = 0.0;                            ///< total dwell [s]
+  long blocks_without_length = 0;                  ///< conic blocks, whose length is not known yet
+  std::size_t warning_count = 0;                   ///< warnings
+  std::vector<std::string> warnings;               ///< the first warnings
+};
+
+/// Reads the whole program and returns its totals; `on_block` (optional) sees every block with
+/// its length (empty for a conic). Throws InputError at the first error.
+ProgramSummary check_program(const std::string& path, const ReaderOptions& options = {},
+                             const std::function<void(const Block&, std::optional<double>)>& on_block = {});
+
+/// The later stages' entry: validates the whole program first (no block is handed out if it has an
+/// error: InputError is thrown), then reads it again and calls `on_block` for every block.
+void for_each_block(const std::string& path, const std::function<void(const Block&)>& on_block,
+                    const ReaderOptions& options = {});
+
+}  // namespace kontur::gcode

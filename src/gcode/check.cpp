@@ -1,0 +1,39 @@
+#include <kontur/gcode/reader.hpp>
+
+namespace kontur::gcode {
+
+ProgramSummary check_program(const std::string& path, const ReaderOptions& options,
+                             const std::function<void(const Block&, std::optional<double>)>& on_block) {
+  Reader reader(path, options);
+  ProgramSummary s;
+  Block b;
+  while (reader.next(b)) {
+    const std::optional<double> len = b.length_mm();
+    ++s.blocks;
+    ++s.by_type[static_cast<std::size_t>(b.type)];
+    if (!len) ++s.blocks_without_length;
+    else if (b.type == BlockType::rapid) s.rapid_length_mm += *len;
+    else s.path_length_mm += *len;
+    s.dwell_s += b.dwell_s;
+    if (on_block) on_block(b, len);
+  }
+  s.lines = reader.lines_read();
+  s.warning_count = reader.warning_count();
+  s.warnings = reader.warnings();
+  return s;
+}
+
+void for_each_block(const std::string& path, const std::function<void(const Block&)>& on_block,
+                    const ReaderOptions& options) {
+  {
+    Reader validate(path, options);  // pass 1: the whole program, no block kept
+    Block b;
+    while (validate.next(b)) {
+    }
+  }
+  Reader reader(path, options);  // pass 2: the same program, now known to be valid
+  Block b;
+  while (reader.next(b)) on_block(b);
+}
+
+}  // namespace kontur::gcode

@@ -1,0 +1,272 @@
+// LinuxCNC O-word control flow: subroutines, loops and conditionals, by seeking back in the
+// streamed program (docs/gcode.md, "O-words").
+#include "interpreter.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace kontur::gcode {
+
+Reader::Impl::OWord Reader::Impl::parse_oword(const detail::NormalizedLine& line) const {
+  const std::string& t = line.text;
+  OWord o;
+  std::size_t p = 1;
+  if (p < t.size() && t[p] == '<') {
+    const std::size_t close = t.find('>', p);
+    if (close == std::string::npos) detail::fail_at(line, 0, ctx, "o-word", "O<: '>' missing in the O-word label");
+    o.label = t.substr(0, close + 1);
+    p = close + 1;
+  } else {
+    while (p < t.size() && t[p] >= '0' && t[p] <= '9') ++p;
+    if (p == 1) detail::fail_at(line, 0, ctx, "o-word", fmt::format("'{}': O needs a number or <name>", t.substr(0, 20)));
+    o.label = t.substr(0, p);
+  }
+  static const std::pair<const char*, OKind> keywords[] = {
+      {"ENDSUB", OKind::endsub}, {"SUB", OKind::sub},          {"CALL", OKind::call},
+      {"RETURN", OKind::ret},    {"ENDWHILE", OKind::endwhile}, {"WHILE", OKind::while_},
+      {"DO", OKind::do_},        {"ENDREPEAT", OKind::endrepeat}, {"REPEAT", OKind::repeat},
+      {"ELSEIF", OKind::elseif}, {"ELSE", OKind::else_},        {"ENDIF", OKind::endif},
+      {"IF", OKind::if_},        {"BREAK", OKind::break_},      {"CONTINUE", OKind::continue_}};
+  for (const auto& [kw, kind] : keywords) {
+    const std::size_t n = std::strlen(kw);
+    if (t.compare(p, n, kw) == 0) {
+      o.kind = kind;
+      o.rest = p + n;
+      return o;
+    }
+  }
+  detail::fail_at(line, p, ctx, "o-word",
+                  fmt::format("'{}': unknown O-word keyword (sub endsub call return while endwhile do repeat endrepeat "
+                              "if elseif else endif break continue)",
+                              t.substr(0, 24)));
+}
+
+double Reader::Impl::o_value(const OWord& o, std::size_t& at, const char* what) const {
+  if (at >= nl.text.size())
+    detail::fail_at(nl, at, ctx, "o-word", fmt::format("{} {}: [value] missing", o.label, what));
+  return detail::parse_real_value(nl, at, ctx, params);
+}
+
+void Reader::Impl::o_end_of_line(std::size_t at) const {
+  if (at < nl.text.size())
+    detail::fail_at(nl, at, ctx, "syntax", fmt::format("'{}': unexpected text after the O-word", nl.text.substr(at, 20)));
+}
+
+Reader::Impl::OWord Reader::Impl::skip_to(const std::string& label, std::initializer_list<OKind> kinds, const char* what) {
+  const long from = line_no;
+  std::string_view raw;
+  while (read_line(raw)) {
+    detail::normalize_line(raw, ctx, nl);
+    if (nl.text.empty() || nl.text[0] != 'O') continue;
+    const OWord o = parse_oword(nl);
+    if (o.label != label) continue;
+    for (const OKind k : kinds)
+      if (o.kind == k) return o;
+  }
+  fail_column(from, 1, "o-word", fmt::format("{}: {} not found before the end of the file", label, what));
+}
+
+Reader::Impl::Frame* Reader::Impl::find_frame(const std::string& label) {
+  for (auto it = frames.rbegin(); it != frames.rend(); ++it)
+    if (it->label == label) return &*it;
+  return nullptr;
+}
+
+void Reader::Impl::loop_guard(const std::string& label) {
+  if (++loop_iterations > opt.max_loop_iterations)
+    fail_column(line_no, 1, "o-word-loop",
+                fmt::format("{}: more than {} loop iterations and calls in the program (endless loop?)", label,
+                            opt.max_loop_iterations));
+}
+
+void Reader::Impl::control_flow() {
+  if (spline == Spline::g52)
+    fail(nl.first_column, "g52-open", "O-word inside an open G5.2 NURBS block (close it with G5.3 first)");
+  if (spline == Spline::g62) finish_g62();
+  const OWord o = parse_oword(nl);
+  std::size_t at = o.rest;
+  const int col = nl.first_column;
+  switch (o.kind) {
+    case OKind::sub: {
+      o_end_of_line(at);
+      subs[o.label] = SubStart{tell(), line_no + 1};
+      skip_to(o.label, {OKind::endsub}, "endsub");
+      return;
+    }
+    case OKind::call: {
+      const auto it = subs.find(o.label);
+      if (it == subs.end())
+        fail(col, "o-word-call", fmt::format("{} call: subroutine not defined (define it with {} sub before the call)",
+                                             o.label, o.label));
+      loop_guard(o.label);
+      if (frames.size() >= 64) fail(col, "o-word-call", fmt::format("{} call: calls nested more than 64 deep", o.label));
+      Frame f{OKind::call, o.label, tell(), line_no + 1};
+      f.call_column = col;
+      for (int i = 0; i < 30; ++i) f.saved[static_cast<std::size_t>(i)] = params.numbered(i + 1);
+      std::array<double, 30> args{};
+      int n = 0;
+      while (at < nl.text.size()) {
+        if (n == 30) fail(col, "o-word-call", fmt::format("{} call: more than 30 arguments", o.label));
+        args[static_cast<std::size_t>(n++)] = o_value(o, at, "call");
+      }
+      for (int i = 0; i < 30; ++i) params.set_numbered(i + 1, args[static_cast<std::size_t>(i)]);
+      frames.push_back(f);
+      seek(it->second.offset, it->second.line);
+      return;
+    }
+    case OKind::endsub:
+    case OKind::ret: {
+      if (at < nl.text.size()) params.set_named("_VALUE", o_value(o, at, "return"));
+      o_end_of_line(at);
+      // leave the loops and conditionals of the subroutine
+      while (!frames.empty() && frames.back().kind != OKind::call) frames.pop_back();
+      if (frames.empty() || frames.back().label != o.label)
+        fail(col, "o-word", fmt::format("{} {}: not inside a call of {}", o.label,
+                                        o.kind == OKind::ret ? "return" : "endsub", o.label));
+      const Frame f = frames.back();
+      frames.pop_back();
+      for (int i = 0; i < 30; ++i) params.set_numbered(i + 1, f.saved[static_cast<std::size_t>(i)]);
+      seek(f.offset, f.line);
+      return;
+    }
+    case OKind::while_: {
+      Frame* open = find_frame(o.label);
+      if (open && open->kind == OKind::do_) {  // the end of a do ... while loop
+        const double c = o_value(o, at, "while");
+        o_end_of_line(at);
+        if (c != 0.0) {
+          loop_guard(o.label);
+          seek(open->offset, open->line);
+        } else {
+          while (frames.back().label != o.label) frames.pop_back();
+          frames.pop_back();
+        }
+        return;
+      }
+      const double c = o_value(o, at, "while");
+      o_end_of_line(at);
+      if (c != 0.0) {
+        if (open && open->kind == OKind::while_ && open->offset == line_start) {
+          loop_guard(o.label);  // back at the head of a running loop
+        } else {
+          frames.push_back(Frame{OKind::while_, o.label, line_start, line_no});
+        }
+      } else {
+        if (open && open->kind == OKind::while_ && open->offset == line_start) {
+          while (frames.back().label != o.label) frames.pop_back();
+          frames.pop_back();
+        }
+        skip_to(o.label, {OKind::endwhile}, "endwhile");
+      }
+      return;
+    }
+    case OKind::endwhile: {
+      o_end_of_line(at);
+      Frame* f = find_frame(o.label);
+      if (!f || f->kind != OKind::while_) fail(col, "o-word", fmt::format("{} endwhile: no open {} while", o.label, o.label));
+      seek(f->offset, f->line);
+      return;
+    }
+    case OKind::do_:
+      o_end_of_line(at);
+      frames.push_back(Frame{OKind::do_, o.label, tell(), line_no + 1});
+      return;
+    case OKind::repeat: {
+      const double c = o_value(o, at, "repeat");
+      o_end_of_line(at);
+      const double n = std::floor(c);
+      if (n > static_cast<double>(opt.max_loop_iterations))
+        fail(col, "o-word-loop", fmt::format("{} repeat [{}]: more than {} iterations", o.label, num(c), opt.max_loop_iterations));
+      if (n < 1.0) {
+        skip_to(o.label, {OKind::endrepeat}, "endrepeat");
+        return;
+      }
+      Frame f{OKind::repeat, o.label, tell(), line_no + 1};
+      f.count = static_cast<long>(n);
+      frames.push_back(f);
+      return;
+    }
+    case OKind::endrepeat: {
+      o_end_of_line(at);
+      Frame* f = find_frame(o.label);
+      if (!f || f->kind != OKind::repeat) fail(col, "o-word", fmt::format("{} endrepeat: no open {} repeat", o.label, o.label));
+      if (--f->count > 0) {
+        loop_guard(o.label);
+        seek(f->offset, f->line);
+      } else {
+        while (frames.back().label != o.label) frames.pop_back();
+        frames.pop_back();
+      }
+      return;
+    }
+    case OKind::if_: {
+      double c = o_value(o, at, "if");
+      o_end_of_line(at);
+      frames.push_back(Frame{OKind::if_, o.label, 0, line_no});
+      while (c == 0.0) {  // find the branch to run
+        const OWord next = skip_to(o.label, {OKind::elseif, OKind::else_, OKind::endif}, "endif");
+        if (next.kind == OKind::endif) {
+          frames.pop_back();
+          return;
+        }
+        if (next.kind == OKind::else_) return;
+        std::size_t p2 = next.rest;
+        c = o_value(next, p2, "elseif");
+        o_end_of_line(p2);
+      }
+      return;
+    }
+    case OKind::elseif:
+    case OKind::else_: {  // the branch that ran ends here
+      Frame* f = find_frame(o.label);
+      if (!f || f->kind != OKind::if_) fail(col, "o-word", fmt::format("{}: no open {} if", o.label, o.label));
+      skip_to(o.label, {OKind::endif}, "endif");
+      while (frames.back().label != o.label) frames.pop_back();
+      frames.pop_back();
+      return;
+    }
+    case OKind::endif: {
+      o_end_of_line(at);
+      Frame* f = find_frame(o.label);
+      if (!f || f->kind != OKind::if_) fail(col, "o-word", fmt::format("{} endif: no open {} if", o.label, o.label));
+      while (frames.back().label != o.label) frames.pop_back();
+      frames.pop_back();
+      return;
+    }
+    case OKind::break_:
+    case OKind::continue_: {
+      o_end_of_line(at);
+      Frame* f = find_frame(o.label);
+      if (!f || (f->kind != OKind::while_ && f->kind != OKind::do_ && f->kind != OKind::repeat))
+        fail(col, "o-word", fmt::format("{} {}: not inside a loop {}", o.label,
+                                        o.kind == OKind::break_ ? "break" : "continue", o.label));
+      const OKind loop = f->kind;
+      if (o.kind == OKind::continue_) {
+        while (frames.back().label != o.label) frames.pop_back();
+        Frame& top = frames.back();
+        loop_guard(o.label);
+        if (loop == OKind::while_) {
+          seek(top.offset, top.line);
+        } else if (loop == OKind::repeat) {
+          if (--top.count > 0) seek(top.offset, top.line);
+          else {
+            frames.pop_back();
+            skip_to(o.label, {OKind::endrepeat}, "endrepeat");
+          }
+        } else {  // do: continue at the condition
+          skip_to(o.label, {OKind::while_}, "while");
+          control_flow();
+        }
+        return;
+      }
+      while (frames.back().label != o.label) frames.pop_back();
+      frames.pop_back();
+      skip_to(o.label, {loop == OKind::while_ ? OKind::endwhile : loop == OKind::repeat ? OKind::endrepeat : OKind::while_},
+              "the loop's end");
+      return;
+    }
+  }
+}
+
+}  // namespace kontur::gcode
