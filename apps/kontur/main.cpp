@@ -1,5 +1,6 @@
 // The `kontur` command: one subcommand per job, the library does the work.
 #include "commands.hpp"
+#include "report_output.hpp"
 
 #include <kontur/error.hpp>
 #include <kontur/version.hpp>
@@ -21,6 +22,7 @@ int main(int argc, char** argv) {
              "  kontur arc 110,100,50 100,110,50 90,100,50 --omega 0.5 --steps 4\n"
              "Run `kontur SUBCOMMAND --help` for the options of each subcommand.");
   int exit_code = exit_ok;
+  set_invocation(argc, argv);
   register_spline_command(app, exit_code);
   register_machine_command(app, exit_code);
   register_arc_command(app, exit_code);
