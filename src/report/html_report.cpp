@@ -138,7 +138,7 @@ Json plot_json(const Plot& p, const RenderOptions& o) {
   j["x_label"] = p.x_label;
   j["y_label"] = p.y_label;
   j["linked"] = p.linked;
-  auto& series = j["series"] = Json::array();
+  Json series = Json::array();
   for (const auto& s : p.series) {
     const std::vector<std::span<const double>> channels = {s.y};
     const auto keep = decimate_min_max(s.x.size(), buckets_for(o.max_points_2d, 1), channels);
@@ -157,8 +157,10 @@ Json plot_json(const Plot& p, const RenderOptions& o) {
     e["shown"] = keep.size();
     series.push_back(std::move(e));
   }
-  auto& limits = j["limits"] = Json::array();
+  j["series"] = std::move(series);
+  Json limits = Json::array();
   for (const auto& l : p.limits) limits.push_back({{"name", l.name}, {"value", z0(l.value)}, {"color", l.color}});
+  j["limits"] = std::move(limits);
   return j;
 }
 
@@ -169,8 +171,9 @@ Json table_json(const Table& t) {
   const std::size_t n = t.rows.size();
   const std::size_t head = n > t.max_rows ? t.max_rows / 2 : n;
   const std::size_t tail_start = n > t.max_rows ? n - t.max_rows / 2 : n;
-  auto& rows = j["rows"] = Json::array();
-  auto& links = j["links"] = Json::array();
+  // Locals, assigned at the end: an ordered_json object keeps its members in a vector, so a
+  // reference to one member does not survive the insertion of another.
+  Json rows = Json::array(), links = Json::array();
   auto add = [&](std::size_t i) {
     rows.push_back(t.rows[i]);
     if (!t.links.empty()) {
@@ -187,6 +190,8 @@ Json table_json(const Table& t) {
   j["omitted_after"] = head;
   j["omitted"] = tail_start - head;
   for (std::size_t i = tail_start; i < n; ++i) add(i);
+  j["rows"] = std::move(rows);
+  j["links"] = std::move(links);
   return j;
 }
 
@@ -285,6 +290,18 @@ constexpr const char* page_viewer = R"html(</script>
     summary.appendChild(tr);
   });
 
+  // A range for values that may all be equal up to rounding (a constant speed): widened so that
+  // the rounding is not drawn as noise. Returns null when the automatic range is fine.
+  function steadyRange(values) {
+    var lo = Infinity, hi = -Infinity;
+    values.forEach(function (v) { if (v < lo) lo = v; if (v > hi) hi = v; });
+    if (!(lo <= hi)) return null;
+    var mag = Math.max(Math.abs(lo), Math.abs(hi));
+    if (hi - lo > 1e-9 * mag && hi - lo > 1e-300) return null;
+    var mid = (lo + hi) / 2, pad = mag > 0 ? 0.1 * mag : 1;
+    return [mid - pad, mid + pad];
+  }
+
   // ---- 3-D view and projections
   var lines = data.scene.polylines;
   var colorbarShown = false;
@@ -299,6 +316,8 @@ constexpr const char* page_viewer = R"html(</script>
       t.line.colorbar = { title: { text: p.scalar_name }, len: 0.6 };
       t.marker.color = p.scalar;
       t.marker.colorscale = "Viridis";
+      var cr = steadyRange(p.scalar);
+      if (cr) { t.line.cmin = cr[0]; t.line.cmax = cr[1]; t.marker.cmin = cr[0]; t.marker.cmax = cr[1]; }
       t.customdata = p.scalar;
       t.hovertemplate = "%{x}, %{y}, %{z} mm<br>" + p.scalar_name + " %{customdata}<extra>" + p.name + "</extra>";
       colorbarShown = true;
@@ -314,6 +333,8 @@ constexpr const char* page_viewer = R"html(</script>
       t.line.color = "#b0bec5";
       t.mode = "lines+markers";
       t.marker = { color: p.scalar, colorscale: "Viridis", size: 3 };
+      var cr2 = steadyRange(p.scalar);
+      if (cr2) { t.marker.cmin = cr2[0]; t.marker.cmax = cr2[1]; }
     }
     if (p.labels) { t.text = p.labels; t.mode = t.mode + "+text"; t.textposition = "top center"; }
     return t;
@@ -321,10 +342,23 @@ constexpr const char* page_viewer = R"html(</script>
   var highlight = { name: "selected", x: [], y: [], z: [], mode: "markers", color: "#ff6f00", width: 1, size: 10, dashed: false };
   var traces = lines.map(trace3d);
   traces.push(trace3d(highlight));
+  // Equal scales on the three axes, but no axis flatter than a third of the largest extent (a
+  // plane curve would otherwise be drawn as a line).
+  var lo = {}, hi = {};
+  ["x", "y", "z"].forEach(function (a) {
+    lo[a] = Infinity; hi[a] = -Infinity;
+    lines.forEach(function (p) { p[a].forEach(function (v) { if (v < lo[a]) lo[a] = v; if (v > hi[a]) hi[a] = v; }); });
+    if (!(lo[a] <= hi[a])) { lo[a] = 0; hi[a] = 1; }
+  });
+  var extent = Math.max(hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-9);
+  var scene = { aspectmode: "manual", aspectratio: {}, camera: { eye: { x: 1.25, y: -1.25, z: 0.9 } } };
+  ["x", "y", "z"].forEach(function (a) {
+    var half = Math.max(hi[a] - lo[a], extent / 3) * 0.55, mid = (lo[a] + hi[a]) / 2;
+    scene[a + "axis"] = { title: { text: a + " [mm]" }, range: [mid - half, mid + half] };
+    scene.aspectratio[a] = half / (0.55 * extent);
+  });
   Plotly.newPlot("scene3d", traces, {
-    margin: { l: 0, r: 0, t: 10, b: 0 }, font: font, legend: { x: 0, y: 1 },
-    scene: { aspectmode: "data", xaxis: { title: { text: "x [mm]" } }, yaxis: { title: { text: "y [mm]" } },
-             zaxis: { title: { text: "z [mm]" } } }
+    margin: { l: 0, r: 0, t: 10, b: 0 }, font: font, legend: { x: 0, y: 1 }, scene: scene
   }, config);
   var projections = [["proj-xy", "x", "y"], ["proj-yz", "y", "z"], ["proj-zx", "z", "x"]];
   projections.forEach(function (pr) {
@@ -357,9 +391,15 @@ constexpr const char* page_viewer = R"html(</script>
       annotations.push({ xref: "paper", x: 1, y: l.value, xanchor: "right", yanchor: "bottom", showarrow: false,
                          text: l.name, font: { size: 10, color: l.color } });
     });
+    var ys = [];
+    p.series.forEach(function (s) { ys = ys.concat(s.y); });
+    p.limits.forEach(function (l) { ys.push(l.value); });
+    var yaxis = { title: { text: p.y_label } };
+    var yr = steadyRange(ys);
+    if (yr) yaxis.range = yr;
     Plotly.newPlot(div, ts, { margin: { l: 60, r: 10, t: 10, b: 40 }, font: font, shapes: shapes,
                               annotations: annotations, xaxis: { title: { text: p.x_label } },
-                              yaxis: { title: { text: p.y_label } } }, config);
+                              yaxis: yaxis }, config);
     if (p.linked) timePlots.push({ div: div, shapes: shapes });
   });
 
@@ -479,15 +519,21 @@ std::string render_html(const Report& report, const RenderOptions& options) {
   j["subtitle"] = report.subtitle;
   j["generator"] = fmt::format("Written by kontur {} with plotly.js {} embedded; opens offline.", version_string,
                                detail::plotly_version);
-  auto& summary = j["summary"] = Json::array();
+  // Members are built as locals and then moved in (see table_json).
+  Json summary = Json::array();
   for (const auto& kv : report.summary) summary.push_back({kv[0], kv[1]});
-  j["scene"]["title"] = report.scene_title;
-  auto& lines = j["scene"]["polylines"] = Json::array();
+  j["summary"] = std::move(summary);
+  Json scene, lines = Json::array();
+  scene["title"] = report.scene_title;
   for (const auto& pl : report.polylines) lines.push_back(polyline_json(pl, options));
-  auto& plots = j["plots"] = Json::array();
+  scene["polylines"] = std::move(lines);
+  j["scene"] = std::move(scene);
+  Json plots = Json::array();
   for (const auto& p : report.plots) plots.push_back(plot_json(p, options));
-  auto& tables = j["tables"] = Json::array();
+  j["plots"] = std::move(plots);
+  Json tables = Json::array();
   for (const auto& t : report.tables) tables.push_back(table_json(t));
+  j["tables"] = std::move(tables);
   j["notes"] = report.notes;
 
   std::string html;
