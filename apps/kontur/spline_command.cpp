@@ -108,13 +108,8 @@ void write_spline_report(const SplineOptions& o, const NurbsCurve& curve, const 
     for (std::size_t i = 0; i < curve.points().size(); ++i) polygon.labels.push_back(fmt::format("P{}", i));
   rep.polylines.push_back(std::move(polygon));
   std::vector<Vec3> bounds;
-  std::vector<std::string> bound_labels;
-  for (std::size_t i = 0; i <= sp.size(); ++i) {
-    const double u = i < sp.size() ? sp[i].u_start : sp.back().u_end;
-    bounds.push_back(curve.point(u));
-    bound_labels.push_back(sp.size() <= 40 ? fmt::format("u={}", num(u)) : std::string());
-  }
-  rep.polylines.push_back(labelled_points("span boundaries", bounds, bound_labels, "#d62728", 6.0));
+  for (std::size_t i = 0; i <= sp.size(); ++i) bounds.push_back(curve.point(i < sp.size() ? sp[i].u_start : sp.back().u_end));
+  rep.polylines.push_back(labelled_points("span boundaries (u in the span table)", bounds, {}, "#d62728", 6.0));
   if (o.step > 0.0) {
     ForwardDifferenceStepper fd(spans, o.step, o.summation == "compensated" ? Summation::compensated : Summation::plain);
     report::Polyline pts;
