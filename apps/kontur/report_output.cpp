@@ -201,12 +201,16 @@ void add_arc_motion(report::Report& r, const Curve& curve, const std::optional<A
     table.title = fmt::format("Constant feed F = {} mm/min, T = {} s: setpoints [mm]", num(feed->feed_mm_min()),
                               num(period));
     table.columns = {"k", "t [s]", "s [mm]", "u", "x", "y", "z"};
-    for (std::size_t k = 0; k < feed_samples.size(); ++k) {
+    // Made lazily: only the rows shown (at most max_rows of millions of periods) are formatted.
+    table.row_count = feed_samples.size();
+    table.make_row = [&feed_samples](std::size_t k) {
       const auto& m = feed_samples[k];
-      table.rows.push_back({fmt::format("{}", k), fixed(m.time_s, 6), fixed(m.arc_mm, 6), fixed(m.u, 9),
-                            fixed(m.point.x()), fixed(m.point.y()), fixed(m.point.z())});
-      table.links.push_back({m.time_s, m.point});
-    }
+      return std::vector<std::string>{fmt::format("{}", k), fixed(m.time_s, 6), fixed(m.arc_mm, 6), fixed(m.u, 9),
+                                      fixed(m.point.x()), fixed(m.point.y()), fixed(m.point.z())};
+    };
+    table.make_link = [&feed_samples](std::size_t k) {
+      return report::RowLink{feed_samples[k].time_s, feed_samples[k].point};
+    };
     r.tables.push_back(std::move(table));
   }
 }

@@ -32,7 +32,8 @@ void add_frame_axes(report::Report& r, const std::string& name, const Eigen::Mat
 /// The motion along an arc or a conic: the path coloured by path speed, the steps, the plots of
 /// path speed and of each axis's velocity, acceleration and jerk over time, and the step tables
 /// with links to the plots. `angular` holds the seed's mode (timing and rows), `feed` Kontur's
-/// constant-feed mode; either may be absent.
+/// constant-feed mode; either may be absent. The report refers to feed_samples (its setpoint
+/// table is made lazily), which must outlive it.
 void add_arc_motion(report::Report& r, const Curve& curve, const std::optional<AngularTiming>& timing,
                     const std::vector<AngularRow>& rows, const char* angle_name, const char* frame_name,
                     const ConstantFeedStepper* feed, const std::vector<MotionSample>& feed_samples);

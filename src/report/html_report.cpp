@@ -23,21 +23,29 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 // ---------------------------------------------------------------------------- checks
-void check_finite(double v, const std::string& where) {
+// `where` makes the name of the number, only when it is not finite (millions of checks).
+template <class Where>
+void check_finite(double v, const Where& where) {
   if (!std::isfinite(v))
     throw InputError("report-not-finite", fmt::format("report: {} is {}; every number of a report must be finite",
-                                                      where, v));
+                                                      where(), v));
 }
 
-void check_point(const Vec3& p, const std::string& where) {
+template <class Where>
+void check_point(const Vec3& p, const Where& where) {
   static const char* axis[3] = {"x", "y", "z"};
-  for (int a = 0; a < 3; ++a) check_finite(p[a], fmt::format("{}.{}", where, axis[a]));
+  for (int a = 0; a < 3; ++a) check_finite(p[a], [&] { return fmt::format("{}.{}", where(), axis[a]); });
+}
+
+void check_link(const Table& t, const RowLink& l, std::size_t i) {
+  check_finite(l.x, [&] { return fmt::format("table '{}' link {} x", t.title, i); });
+  if (l.point_mm) check_point(*l.point_mm, [&] { return fmt::format("table '{}' link {} point", t.title, i); });
 }
 
 void check_model(const Report& r) {
   for (const auto& pl : r.polylines) {
     const std::string what = fmt::format("polyline '{}'", pl.name);
-    for (std::size_t i = 0; i < pl.points_mm.size(); ++i) check_point(pl.points_mm[i], fmt::format("{} point {}", what, i));
+    for (std::size_t i = 0; i < pl.points_mm.size(); ++i) check_point(pl.points_mm[i], [&] { return fmt::format("{} point {}", what, i); });
     if (!pl.scalar.empty() && pl.scalar.size() != pl.points_mm.size())
       throw InputError("report-model", fmt::format("report: {} has {} points but {} scalar values", what,
                                                    pl.points_mm.size(), pl.scalar.size()));
@@ -45,9 +53,9 @@ void check_model(const Report& r) {
       throw InputError("report-model", fmt::format("report: {} has {} points but {} labels", what,
                                                    pl.points_mm.size(), pl.labels.size()));
     for (std::size_t i = 0; i < pl.scalar.size(); ++i)
-      check_finite(pl.scalar[i], fmt::format("{} {} {}", what, pl.scalar_name.empty() ? "scalar" : pl.scalar_name, i));
-    check_finite(pl.width_px, what + " width");
-    check_finite(pl.marker_px, what + " marker size");
+      check_finite(pl.scalar[i], [&] { return fmt::format("{} {} {}", what, pl.scalar_name.empty() ? "scalar" : pl.scalar_name, i); });
+    check_finite(pl.width_px, [&] { return std::string(what + " width"); });
+    check_finite(pl.marker_px, [&] { return std::string(what + " marker size"); });
   }
   for (const auto& p : r.plots) {
     for (const auto& s : p.series) {
@@ -55,11 +63,11 @@ void check_model(const Report& r) {
       if (s.x.size() != s.y.size())
         throw InputError("report-model", fmt::format("report: {} has {} x but {} y values", what, s.x.size(), s.y.size()));
       for (std::size_t i = 0; i < s.x.size(); ++i) {
-        check_finite(s.x[i], fmt::format("{} x {}", what, i));
-        check_finite(s.y[i], fmt::format("{} y {}", what, i));
+        check_finite(s.x[i], [&] { return fmt::format("{} x {}", what, i); });
+        check_finite(s.y[i], [&] { return fmt::format("{} y {}", what, i); });
       }
     }
-    for (const auto& l : p.limits) check_finite(l.value, fmt::format("plot '{}' limit '{}'", p.title, l.name));
+    for (const auto& l : p.limits) check_finite(l.value, [&] { return fmt::format("plot '{}' limit '{}'", p.title, l.name); });
   }
   for (const auto& t : r.tables) {
     for (std::size_t i = 0; i < t.rows.size(); ++i)
@@ -69,10 +77,10 @@ void check_model(const Report& r) {
     if (!t.links.empty() && t.links.size() != t.rows.size())
       throw InputError("report-model", fmt::format("report: table '{}' has {} rows but {} links", t.title,
                                                    t.rows.size(), t.links.size()));
-    for (std::size_t i = 0; i < t.links.size(); ++i) {
-      check_finite(t.links[i].x, fmt::format("table '{}' link {} x", t.title, i));
-      if (t.links[i].point_mm) check_point(*t.links[i].point_mm, fmt::format("table '{}' link {} point", t.title, i));
-    }
+    if (t.make_row && !t.rows.empty())
+      throw InputError("report-model", fmt::format("report: table '{}' has both rows and make_row", t.title));
+    // Links of lazily made rows are checked when they are made (table_json).
+    for (std::size_t i = 0; i < t.links.size(); ++i) check_link(t, t.links[i], i);
     if (t.max_rows < 2) throw InputError("report-model", fmt::format("report: table '{}' max_rows < 2", t.title));
   }
 }
@@ -168,19 +176,31 @@ Json table_json(const Table& t) {
   Json j;
   j["title"] = t.title;
   j["columns"] = t.columns;
-  const std::size_t n = t.rows.size();
+  const bool lazy = static_cast<bool>(t.make_row);
+  const std::size_t n = lazy ? t.row_count : t.rows.size();
+  const bool linked = lazy ? static_cast<bool>(t.make_link) : !t.links.empty();
   const std::size_t head = n > t.max_rows ? t.max_rows / 2 : n;
   const std::size_t tail_start = n > t.max_rows ? n - t.max_rows / 2 : n;
   // Locals, assigned at the end: an ordered_json object keeps its members in a vector, so a
   // reference to one member does not survive the insertion of another.
   Json rows = Json::array(), links = Json::array();
   auto add = [&](std::size_t i) {
-    rows.push_back(t.rows[i]);
-    if (!t.links.empty()) {
+    if (lazy) {
+      auto row = t.make_row(i);
+      if (row.size() != t.columns.size())
+        throw InputError("report-model", fmt::format("report: table '{}' row {} has {} cells for {} columns", t.title,
+                                                     i, row.size(), t.columns.size()));
+      rows.push_back(std::move(row));
+    } else {
+      rows.push_back(t.rows[i]);
+    }
+    if (linked) {
+      const RowLink link = lazy ? t.make_link(i) : t.links[i];
+      if (lazy) check_link(t, link, i);
       Json l;
-      l["t"] = z0(t.links[i].x);
-      if (t.links[i].point_mm) {
-        const Vec3& q = *t.links[i].point_mm;
+      l["t"] = z0(link.x);
+      if (link.point_mm) {
+        const Vec3& q = *link.point_mm;
         l["p"] = {z0(q.x()), z0(q.y()), z0(q.z())};
       }
       links.push_back(std::move(l));

@@ -15,6 +15,7 @@
 #include <array>
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -90,6 +91,12 @@ struct Table {
   std::vector<std::vector<std::string>> rows;  ///< each with columns.size() cells
   std::vector<RowLink> links;                  ///< empty, or one per row: click a row to mark it
   std::size_t max_rows = 2000;
+  /// For long tables, instead of `rows` and `links` (which must then be empty): the number of
+  /// rows and functions that make row i and its link (may be empty: no links). Only the rows
+  /// shown are made, so a run of millions of periods costs no memory here.
+  std::size_t row_count = 0;
+  std::function<std::vector<std::string>(std::size_t)> make_row;
+  std::function<RowLink(std::size_t)> make_link;
 };
 
 /// The whole report.
