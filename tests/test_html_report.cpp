@@ -1,22 +1,20 @@
 // The HTML report writer (docs/report.md): decimation keeps the extrema, the output is the same
 // bytes for the same model, never carries NaN or infinity, and is written atomically without
 // ever overwriting an input.
-#include <kontur/error.hpp>
-#include <kontur/io/atomic_file.hpp>
-#include <kontur/report/html_report.hpp>
-
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <kontur/error.hpp>
+#include <kontur/io/atomic_file.hpp>
+#include <kontur/report/html_report.hpp>
 #include <limits>
 #include <random>
 #include <sstream>
 #include <stdexcept>
-
-#include <unistd.h>
 
 namespace {
 namespace fs = std::filesystem;
@@ -26,7 +24,7 @@ using namespace kontur::report;
 
 // A fresh, empty directory per test, removed at the end.
 class TempDir {
-public:
+ public:
   TempDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     path_ = fs::temp_directory_path() /
@@ -43,7 +41,7 @@ public:
     return static_cast<std::size_t>(std::distance(fs::directory_iterator(path_), fs::directory_iterator()));
   }
 
-private:
+ private:
   fs::path path_;
 };
 
@@ -226,9 +224,7 @@ TEST(HtmlReport, LongTablesShowHeadAndTail) {
 TEST(HtmlReport, WriteReplacesAtomicallyAndLeavesNoTemporaryFile) {
   TempDir dir;
   const fs::path out = dir.path() / "report.html";
-  {
-    std::ofstream(out) << "old";
-  }
+  { std::ofstream(out) << "old"; }
   write_html_report(sample_report(100), out.string());
   EXPECT_EQ(read(out), render_html(sample_report(100)));
   EXPECT_EQ(dir.entries(), 1u);
@@ -253,9 +249,7 @@ TEST(HtmlReport, FailureLeavesNoFile) {
   bad.polylines[0].points_mm[0].x() = std::nan("");
   EXPECT_THROW(write_html_report(bad, out.string()), InputError);
   EXPECT_EQ(dir.entries(), 0u);
-  {
-    std::ofstream(out) << "previous";
-  }
+  { std::ofstream(out) << "previous"; }
   EXPECT_THROW(write_html_report(bad, out.string()), InputError);
   EXPECT_EQ(read(out), "previous");
   EXPECT_EQ(dir.entries(), 1u);
@@ -272,9 +266,7 @@ TEST(HtmlReport, FailureLeavesNoFile) {
 TEST(HtmlReport, RefusesToOverwriteAnInput) {
   TempDir dir;
   const fs::path input = dir.path() / "curve.json";
-  {
-    std::ofstream(input) << "{}";
-  }
+  { std::ofstream(input) << "{}"; }
   const std::vector<fs::path> inputs = {input};
   // The same file, also under another spelling and through a symbolic link.
   const fs::path link = dir.path() / "link.json";

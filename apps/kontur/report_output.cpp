@@ -17,8 +17,8 @@ const char* axis_colors[3] = {"#d62728", "#2ca02c", "#1f77b4"};
 const char* axis_names[3] = {"x", "y", "z"};
 
 /// Per-axis series of a 3-vector quantity over time.
-void add_axis_plot(report::Report& r, const std::string& title, const std::string& y_label, const std::vector<double>& t,
-                   const std::vector<Vec3>& v) {
+void add_axis_plot(report::Report& r, const std::string& title, const std::string& y_label,
+                   const std::vector<double>& t, const std::vector<Vec3>& v) {
   report::Plot p;
   p.title = title;
   p.x_label = "t [s]";
@@ -190,23 +190,23 @@ void add_arc_motion(report::Report& r, const Curve& curve, const std::optional<A
     sp.x_label = "t [s]";
     sp.y_label = "v [mm/s]";
     sp.series.push_back({"path speed (arc per period / T)", tv, speed, "#1f77b4", true});
-    sp.limits.push_back({fmt::format("commanded feed {} mm/min", num(feed->feed_mm_min())), feed->feed_mm_min() / 60.0,
-                         "#d62728"});
+    sp.limits.push_back(
+        {fmt::format("commanded feed {} mm/min", num(feed->feed_mm_min())), feed->feed_mm_min() / 60.0, "#d62728"});
     r.plots.push_back(std::move(sp));
     add_axis_plot(r, "Axis velocity per servo period (constant feed)", "v [mm/s]", tv, v);
     if (!a.empty()) add_axis_plot(r, "Axis acceleration per servo period (constant feed)", "a [mm/s^2]", ta, a);
     if (!jk.empty()) add_axis_plot(r, "Axis jerk per servo period (constant feed)", "j [mm/s^3]", tj, jk);
 
     report::Table table;
-    table.title = fmt::format("Constant feed F = {} mm/min, T = {} s: setpoints [mm]", num(feed->feed_mm_min()),
-                              num(period));
+    table.title =
+        fmt::format("Constant feed F = {} mm/min, T = {} s: setpoints [mm]", num(feed->feed_mm_min()), num(period));
     table.columns = {"k", "t [s]", "s [mm]", "u", "x", "y", "z"};
     // Made lazily: only the rows shown (at most max_rows of millions of periods) are formatted.
     table.row_count = feed_samples.size();
     table.make_row = [&feed_samples](std::size_t k) {
       const auto& m = feed_samples[k];
       return std::vector<std::string>{fmt::format("{}", k), fixed(m.time_s, 6), fixed(m.arc_mm, 6), fixed(m.u, 9),
-                                      fixed(m.point.x()), fixed(m.point.y()), fixed(m.point.z())};
+                                      fixed(m.point.x()),   fixed(m.point.y()), fixed(m.point.z())};
     };
     table.make_link = [&feed_samples](std::size_t k) {
       return report::RowLink{feed_samples[k].time_s, feed_samples[k].point};

@@ -1,15 +1,14 @@
 #pragma once
 // The HTML reports of `kontur spline`, `kontur arc` and `kontur conic` (docs/report.md): the
 // pieces they share, built on the library's report model (kontur/report/html_report.hpp).
-#include "arc_output.hpp"
-
 #include <kontur/arc_motion.hpp>
 #include <kontur/curve.hpp>
 #include <kontur/report/html_report.hpp>
-
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "arc_output.hpp"
 
 namespace kontur::app {
 

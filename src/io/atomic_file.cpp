@@ -1,17 +1,15 @@
-#include <kontur/error.hpp>
-#include <kontur/io/atomic_file.hpp>
-
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <kontur/error.hpp>
+#include <kontur/io/atomic_file.hpp>
 #include <system_error>
-
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 namespace kontur {
 namespace fs = std::filesystem;
@@ -78,8 +76,8 @@ void write_file_atomically(const fs::path& path, const std::function<void(std::o
     }
     fs::rename(temp, path, ec);
     if (ec)
-      throw InputError("output-write", fmt::format("{}: cannot rename the temporary file to it: {}", path.string(),
-                                                   ec.message()));
+      throw InputError("output-write",
+                       fmt::format("{}: cannot rename the temporary file to it: {}", path.string(), ec.message()));
   } catch (...) {
     std::error_code ignore;
     fs::remove(temp, ignore);

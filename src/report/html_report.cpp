@@ -2,20 +2,19 @@
 // plotly.js (embedded at build time), the report's data as JSON (<script type=
 // "application/json">), and a small viewer that draws the data with plotly. Nothing is loaded
 // from anywhere: the file opens from disk with no network.
-#include <kontur/error.hpp>
-#include <kontur/io/atomic_file.hpp>
-#include <kontur/report/html_report.hpp>
-#include <kontur/version.hpp>
-
-#include "plotly_embedded.hpp"
-
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <kontur/error.hpp>
+#include <kontur/io/atomic_file.hpp>
+#include <kontur/report/html_report.hpp>
+#include <kontur/version.hpp>
+#include <nlohmann/json.hpp>
+
+#include "plotly_embedded.hpp"
 
 namespace kontur::report {
 namespace {
@@ -27,8 +26,8 @@ using Json = nlohmann::ordered_json;
 template <class Where>
 void check_finite(double v, const Where& where) {
   if (!std::isfinite(v))
-    throw InputError("report-not-finite", fmt::format("report: {} is {}; every number of a report must be finite",
-                                                      where(), v));
+    throw InputError("report-not-finite",
+                     fmt::format("report: {} is {}; every number of a report must be finite", where(), v));
 }
 
 template <class Where>
@@ -45,15 +44,18 @@ void check_link(const Table& t, const RowLink& l, std::size_t i) {
 void check_model(const Report& r) {
   for (const auto& pl : r.polylines) {
     const std::string what = fmt::format("polyline '{}'", pl.name);
-    for (std::size_t i = 0; i < pl.points_mm.size(); ++i) check_point(pl.points_mm[i], [&] { return fmt::format("{} point {}", what, i); });
+    for (std::size_t i = 0; i < pl.points_mm.size(); ++i)
+      check_point(pl.points_mm[i], [&] { return fmt::format("{} point {}", what, i); });
     if (!pl.scalar.empty() && pl.scalar.size() != pl.points_mm.size())
       throw InputError("report-model", fmt::format("report: {} has {} points but {} scalar values", what,
                                                    pl.points_mm.size(), pl.scalar.size()));
     if (!pl.labels.empty() && pl.labels.size() != pl.points_mm.size())
-      throw InputError("report-model", fmt::format("report: {} has {} points but {} labels", what,
-                                                   pl.points_mm.size(), pl.labels.size()));
+      throw InputError("report-model", fmt::format("report: {} has {} points but {} labels", what, pl.points_mm.size(),
+                                                   pl.labels.size()));
     for (std::size_t i = 0; i < pl.scalar.size(); ++i)
-      check_finite(pl.scalar[i], [&] { return fmt::format("{} {} {}", what, pl.scalar_name.empty() ? "scalar" : pl.scalar_name, i); });
+      check_finite(pl.scalar[i], [&] {
+        return fmt::format("{} {} {}", what, pl.scalar_name.empty() ? "scalar" : pl.scalar_name, i);
+      });
     check_finite(pl.width_px, [&] { return std::string(what + " width"); });
     check_finite(pl.marker_px, [&] { return std::string(what + " marker size"); });
   }
@@ -61,13 +63,15 @@ void check_model(const Report& r) {
     for (const auto& s : p.series) {
       const std::string what = fmt::format("plot '{}' series '{}'", p.title, s.name);
       if (s.x.size() != s.y.size())
-        throw InputError("report-model", fmt::format("report: {} has {} x but {} y values", what, s.x.size(), s.y.size()));
+        throw InputError("report-model",
+                         fmt::format("report: {} has {} x but {} y values", what, s.x.size(), s.y.size()));
       for (std::size_t i = 0; i < s.x.size(); ++i) {
         check_finite(s.x[i], [&] { return fmt::format("{} x {}", what, i); });
         check_finite(s.y[i], [&] { return fmt::format("{} y {}", what, i); });
       }
     }
-    for (const auto& l : p.limits) check_finite(l.value, [&] { return fmt::format("plot '{}' limit '{}'", p.title, l.name); });
+    for (const auto& l : p.limits)
+      check_finite(l.value, [&] { return fmt::format("plot '{}' limit '{}'", p.title, l.name); });
   }
   for (const auto& t : r.tables) {
     for (std::size_t i = 0; i < t.rows.size(); ++i)
@@ -90,9 +94,12 @@ double z0(double v) { return v == 0.0 ? 0.0 : v; }  // no "-0" in the output
 
 const char* style_name(Style s) {
   switch (s) {
-    case Style::line: return "lines";
-    case Style::markers: return "markers";
-    case Style::line_markers: return "lines+markers";
+    case Style::line:
+      return "lines";
+    case Style::markers:
+      return "markers";
+    case Style::line_markers:
+      return "lines+markers";
   }
   return "lines";
 }
@@ -221,8 +228,10 @@ std::string script_safe(const std::string& json) {
   std::string out;
   out.reserve(json.size());
   for (const char c : json) {
-    if (c == '<') out += "\\u003c";
-    else out += c;
+    if (c == '<')
+      out += "\\u003c";
+    else
+      out += c;
   }
   return out;
 }
@@ -482,11 +491,20 @@ std::string html_escape(const std::string& s) {
   std::string out;
   for (const char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -498,7 +516,8 @@ std::vector<std::size_t> decimate_min_max(std::size_t n, std::size_t buckets,
                                           std::span<const std::span<const double>> channels) {
   for (const auto& c : channels)
     if (c.size() != n)
-      throw InputError("report-model", fmt::format("decimate_min_max: a channel has {} values for {} samples", c.size(), n));
+      throw InputError("report-model",
+                       fmt::format("decimate_min_max: a channel has {} values for {} samples", c.size(), n));
   std::vector<std::size_t> keep;
   buckets = std::max<std::size_t>(buckets, 1);
   if (n <= 2 * buckets * std::max<std::size_t>(channels.size(), 1) + 2) {
@@ -531,8 +550,9 @@ std::string plotly_version() { return detail::plotly_version; }
 
 std::string render_html(const Report& report, const RenderOptions& options) {
   if (!plotly_embedded())
-    throw InputError("report-unavailable", "this kontur was built without the HTML report (KONTUR_BUILD_REPORT=OFF, "
-                                           "or plotly.js missing): run scripts/install-deps.sh and rebuild");
+    throw InputError("report-unavailable",
+                     "this kontur was built without the HTML report (KONTUR_BUILD_REPORT=OFF, "
+                     "or plotly.js missing): run scripts/install-deps.sh and rebuild");
   check_model(report);
   Json j;
   j["title"] = report.title;
@@ -579,8 +599,8 @@ void write_html_report(const Report& report, const std::string& path, const std:
     if (!std::cout) throw InputError("output-write", "--report -: writing to the standard output failed");
     return;
   }
-  write_file_atomically(path, [&](std::ostream& out) { out.write(html.data(), static_cast<std::streamsize>(html.size())); },
-                        inputs);
+  write_file_atomically(
+      path, [&](std::ostream& out) { out.write(html.data(), static_cast<std::streamsize>(html.size())); }, inputs);
 }
 
 }  // namespace kontur::report

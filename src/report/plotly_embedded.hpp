@@ -7,9 +7,9 @@
 
 namespace kontur::report::detail {
 
-extern const char* const plotly_version;       ///< version of plotly.js-dist-min, or "" when not embedded
-extern const std::size_t plotly_size;          ///< total bytes of the script
-extern const std::string_view plotly_chunks[]; ///< the script, in pieces to concatenate
-extern const std::size_t plotly_chunk_count;   ///< number of pieces (0: not embedded)
+extern const char* const plotly_version;        ///< version of plotly.js-dist-min, or "" when not embedded
+extern const std::size_t plotly_size;           ///< total bytes of the script
+extern const std::string_view plotly_chunks[];  ///< the script, in pieces to concatenate
+extern const std::size_t plotly_chunk_count;    ///< number of pieces (0: not embedded)
 
 }  // namespace kontur::report::detail

@@ -10,12 +10,11 @@
 // number must be finite: a NaN or an infinity is refused with InputError ("report-not-finite"),
 // naming the item and the index. The output depends only on the model: the same model gives the
 // same bytes.
-#include <kontur/curve.hpp>
-
 #include <array>
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <kontur/curve.hpp>
 #include <optional>
 #include <span>
 #include <string>
@@ -33,13 +32,13 @@ enum class Style {
 /// A named polyline in the machine frame [mm], drawn in the 3-D view and the XY, YZ, ZX
 /// projections.
 struct Polyline {
-  std::string name;                 ///< legend entry, e.g. "path", "control polygon"
-  std::vector<Vec3> points_mm;      ///< the points [mm]
+  std::string name;             ///< legend entry, e.g. "path", "control polygon"
+  std::vector<Vec3> points_mm;  ///< the points [mm]
   Style style = Style::line;
-  std::string color = "#1f77b4";    ///< CSS colour; unused where `scalar` colours the points
-  bool dashed = false;              ///< dashed line (e.g. a control polygon)
-  double width_px = 3.0;            ///< line width [px]
-  double marker_px = 5.0;           ///< marker diameter [px]
+  std::string color = "#1f77b4";  ///< CSS colour; unused where `scalar` colours the points
+  bool dashed = false;            ///< dashed line (e.g. a control polygon)
+  double width_px = 3.0;          ///< line width [px]
+  double marker_px = 5.0;         ///< marker diameter [px]
   /// Optional value per point (same count as points_mm) that colours the line, e.g. path speed
   /// [mm/s]; its name with the unit goes to the colour bar.
   std::vector<double> scalar;
@@ -50,18 +49,18 @@ struct Polyline {
 
 /// A horizontal line on a 2-D plot, e.g. an axis limit or the commanded feed.
 struct LimitLine {
-  std::string name;        ///< e.g. "max velocity X"
-  double value = 0.0;      ///< in the unit of the plot's y axis
+  std::string name;    ///< e.g. "max velocity X"
+  double value = 0.0;  ///< in the unit of the plot's y axis
   std::string color = "#d62728";
 };
 
 /// One curve of a 2-D plot.
 struct Series {
   std::string name;
-  std::vector<double> x;   ///< e.g. time [s]
-  std::vector<double> y;   ///< same count as x
-  std::string color;       ///< CSS colour; empty: plotly's default sequence
-  bool markers = false;    ///< draw markers as well as the line
+  std::vector<double> x;  ///< e.g. time [s]
+  std::vector<double> y;  ///< same count as x
+  std::string color;      ///< CSS colour; empty: plotly's default sequence
+  bool markers = false;   ///< draw markers as well as the line
 };
 
 /// A 2-D plot: one or more series against a common x, with optional limit lines. Linked plots
@@ -69,8 +68,8 @@ struct Series {
 /// for a motion, the parameter u for a curve.
 struct Plot {
   std::string title;
-  std::string x_label;     ///< with the unit, e.g. "t [s]"
-  std::string y_label;     ///< with the unit, e.g. "v [mm/s]"
+  std::string x_label;  ///< with the unit, e.g. "t [s]"
+  std::string y_label;  ///< with the unit, e.g. "v [mm/s]"
   std::vector<Series> series;
   std::vector<LimitLine> limits;
   bool linked = true;
@@ -101,14 +100,14 @@ struct Table {
 
 /// The whole report.
 struct Report {
-  std::string title;                                   ///< e.g. "kontur arc"
-  std::string subtitle;                                ///< e.g. the command line
-  std::vector<std::array<std::string, 2>> summary;     ///< key, value (with units)
+  std::string title;                                ///< e.g. "kontur arc"
+  std::string subtitle;                             ///< e.g. the command line
+  std::vector<std::array<std::string, 2>> summary;  ///< key, value (with units)
   std::string scene_title = "Path";
-  std::vector<Polyline> polylines;                     ///< 3-D view and projections
-  std::vector<Plot> plots;                             ///< 2-D plots, in order
-  std::vector<Table> tables;                           ///< tables, in order
-  std::vector<std::string> notes;                      ///< short paragraphs at the end
+  std::vector<Polyline> polylines;  ///< 3-D view and projections
+  std::vector<Plot> plots;          ///< 2-D plots, in order
+  std::vector<Table> tables;        ///< tables, in order
+  std::vector<std::string> notes;   ///< short paragraphs at the end
 };
 
 /// Display budgets of the writer.
