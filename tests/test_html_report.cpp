@@ -87,6 +87,10 @@ Report sample_report(std::size_t n) {
   return r;
 }
 
+// Tests that render a whole page need plotly.js in the build (KONTUR_BUILD_REPORT=ON).
+#define SKIP_WITHOUT_PLOTLY() \
+  if (!plotly_embedded()) GTEST_SKIP() << "built with KONTUR_BUILD_REPORT=OFF: no plotly.js to embed"
+
 // The JSON between <script type="application/json" id="kontur-data"> and </script>.
 std::string data_of(const std::string& html) {
   const std::string open = "<script type=\"application/json\" id=\"kontur-data\">";
@@ -149,7 +153,7 @@ TEST(HtmlReport, DecimationKeepsSmallDataWhole) {
 }
 
 TEST(HtmlReport, ReportIsSelfContainedAndDeterministic) {
-  ASSERT_TRUE(plotly_embedded()) << "built with KONTUR_BUILD_REPORT=OFF";
+  SKIP_WITHOUT_PLOTLY();
   const Report r = sample_report(50'000);
   const std::string a = render_html(r);
   const std::string b = render_html(sample_report(50'000));
@@ -208,6 +212,7 @@ TEST(HtmlReport, InconsistentModelIsRefused) {
 }
 
 TEST(HtmlReport, LongTablesShowHeadAndTail) {
+  SKIP_WITHOUT_PLOTLY();
   Report r = sample_report(10);
   Table& t = r.tables[0];
   t.rows.clear();
@@ -221,7 +226,37 @@ TEST(HtmlReport, LongTablesShowHeadAndTail) {
   EXPECT_NE(data.find("\"omitted\":4900"), std::string::npos);
 }
 
+TEST(HtmlReport, LazyTablesMakeOnlyTheRowsShown) {
+  SKIP_WITHOUT_PLOTLY();
+  Report r = sample_report(10);
+  Table& t = r.tables[0];
+  t.rows.clear();
+  t.links.clear();
+  t.max_rows = 10;
+  t.row_count = 1'000'000;
+  std::size_t made = 0;
+  t.make_row = [&made](std::size_t i) {
+    ++made;
+    return std::vector<std::string>{"lazy" + std::to_string(i), "x"};
+  };
+  t.make_link = [](std::size_t i) { return RowLink{static_cast<double>(i), Vec3(0, 0, 0)}; };
+  const std::string data = data_of(render_html(r));
+  EXPECT_EQ(made, 10u);
+  EXPECT_NE(data.find("\"lazy999999\""), std::string::npos);
+  EXPECT_NE(data.find("\"omitted\":999990"), std::string::npos);
+  // A lazily made link is checked too.
+  t.make_link = [](std::size_t i) { return RowLink{i == 999'998 ? std::nan("") : 0.0, std::nullopt}; };
+  try {
+    (void)render_html(r);
+    FAIL() << "accepted a NaN link";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.rule(), "report-not-finite");
+    EXPECT_NE(std::string(e.what()).find("link 999998 x"), std::string::npos) << e.what();
+  }
+}
+
 TEST(HtmlReport, WriteReplacesAtomicallyAndLeavesNoTemporaryFile) {
+  SKIP_WITHOUT_PLOTLY();
   TempDir dir;
   const fs::path out = dir.path() / "report.html";
   { std::ofstream(out) << "old"; }
@@ -233,6 +268,7 @@ TEST(HtmlReport, WriteReplacesAtomicallyAndLeavesNoTemporaryFile) {
 }
 
 TEST(HtmlReport, FailureLeavesNoFile) {
+  SKIP_WITHOUT_PLOTLY();
   TempDir dir;
   const fs::path out = dir.path() / "report.html";
   // The writer fails half-way: neither the target nor a temporary file remains.
@@ -264,6 +300,7 @@ TEST(HtmlReport, FailureLeavesNoFile) {
 }
 
 TEST(HtmlReport, RefusesToOverwriteAnInput) {
+  SKIP_WITHOUT_PLOTLY();
   TempDir dir;
   const fs::path input = dir.path() / "curve.json";
   { std::ofstream(input) << "{}"; }

@@ -549,11 +549,11 @@ bool plotly_embedded() noexcept { return detail::plotly_chunk_count > 0; }
 std::string plotly_version() { return detail::plotly_version; }
 
 std::string render_html(const Report& report, const RenderOptions& options) {
+  check_model(report);
   if (!plotly_embedded())
     throw InputError("report-unavailable",
                      "this kontur was built without the HTML report (KONTUR_BUILD_REPORT=OFF, "
                      "or plotly.js missing): run scripts/install-deps.sh and rebuild");
-  check_model(report);
   Json j;
   j["title"] = report.title;
   j["subtitle"] = report.subtitle;
