@@ -87,6 +87,17 @@ for (const [name, args, plots2d] of reports) {
     assert.ok(await page.locator("#summary tr").count() >= 2);
     assert.ok(await page.locator("#tables table.data tr").count() >= 2);
     await page.screenshot({ path: join(artifacts, `report-${name}.png`), fullPage: false });
+    // Clicking a row of a linked table marks its x on the linked plots and its point in the views.
+    const row = page.locator("tr.link").nth(1);
+    await row.click();
+    assert.equal(await row.getAttribute("class"), "link selected");
+    const marks = await page.evaluate(() => ({
+      plots: Array.from(document.querySelectorAll("#plots .js-plotly-plot")).filter((d) =>
+        (d.layout.shapes || []).some((s) => s.line && s.line.color === "#ff6f00")).length,
+      scene: (() => { const d = document.getElementById("scene3d").data; return d[d.length - 1].x.length; })(),
+    }));
+    assert.ok(marks.plots >= 1, `no plot marked: ${JSON.stringify(marks)}`);
+    assert.equal(marks.scene, 1, "the selected point is not marked in the 3-D view");
     assert.deepEqual(errors, [], "console errors");
     assert.deepEqual(requests, [], "network requests other than the report itself");
     await page.close();
