@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer("Example:\n  kontur spline examples/curves/seed_example1.json --step 0.05\n"
              "  kontur arc 110,100,50 100,110,50 90,100,50 --omega 0.5 --steps 4\n"
+             "  kontur spline examples/curves/seed_example1.json --report spline.html   (open it in a browser)\n"
              "Run `kontur SUBCOMMAND --help` for the options of each subcommand.");
   int exit_code = exit_ok;
   set_invocation(argc, argv);
