@@ -365,7 +365,7 @@ constexpr const char* page_viewer = R"html(</script>
       var cr2 = steadyRange(p.scalar);
       if (cr2) { t.marker.cmin = cr2[0]; t.marker.cmax = cr2[1]; }
     }
-    if (p.labels) { t.text = p.labels; t.mode = t.mode + "+text"; t.textposition = "top center"; }
+    if (p.labels) { t.text = p.labels; t.mode = t.mode + "+text"; t.textposition = "top center"; t.cliponaxis = false; }
     return t;
   }
   var highlight = { name: "selected", x: [], y: [], z: [], mode: "markers", color: "#ff6f00", width: 1, size: 10, dashed: false };
