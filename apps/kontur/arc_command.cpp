@@ -3,6 +3,7 @@
 // Kontur's constant-feed mode (--feed F --period T).
 #include "arc_output.hpp"
 #include "commands.hpp"
+#include "report_output.hpp"
 
 #include <kontur/arc_motion.hpp>
 #include <kontur/circle_through_points.hpp>
@@ -22,6 +23,7 @@ struct ArcOptions {
   std::string p1, p2, p3;
   bool full = false;
   ArcMotionOptions motion;
+  std::string report;
 };
 
 constexpr double deg = 180.0 / std::numbers::pi;
@@ -72,6 +74,38 @@ void run_arc(const ArcOptions& o) {
   }
   const char* seen_from_z = c.normal.z() > 0.0 ? "counter-clockwise" : c.normal.z() < 0.0 ? "clockwise" : "edge-on";
 
+  if (!o.report.empty()) {
+    report::Report rep;
+    rep.title = "kontur arc: circle through three points";
+    rep.subtitle = invocation();
+    rep.summary = {{"given points [mm]", fmt::format("r1 = {}, r2 = {}, r3 = {}", point_text(r1), point_text(r2),
+                                                     point_text(r3))},
+                   {"motion type", o.full ? "2: full circle from r1 through r2, r3 back to r1" : "1: arc from r1 through r2 to r3"},
+                   {"centre r0", point_text(c.centre) + " mm"},
+                   {"radius R", num(c.radius_mm) + " mm"},
+                   {"plane normal n", point_text(c.normal)},
+                   {"arc angle theta", angle_text(c.sweep_rad)},
+                   {"length l = R theta", num(c.length_mm) + " mm"},
+                   {"direction", fmt::format("counter-clockwise about n ({} seen from +z)", seen_from_z)}};
+    if (timing) {
+      rep.summary.push_back({"problem type", o.motion.omega ? "1: omega given, t = theta / omega" : "2: t given, omega = theta / t"});
+      rep.summary.push_back({"omega, t, N", fmt::format("{} rad/s, {} s, {}", num(timing->omega_rad_s), num(timing->time_s), timing->steps)});
+      rep.summary.push_back({"speed V = l / t", num(timing->mean_speed_mm_s) + " mm/s"});
+      rep.summary.push_back({"dt, dphi", fmt::format("{} s, {}", num(timing->dt_s), angle_text(timing->dphi_rad))});
+    }
+    if (feed)
+      rep.summary.push_back({"constant feed", fmt::format("F = {} mm/min, T = {} s: {} mm per period, {} periods, t = {} s",
+                                                          num(feed->feed_mm_min()), num(feed->period_s()),
+                                                          num(feed->step_mm()), feed_samples.size() - 1, num(feed->time_s()))});
+    if (limits) rep.summary.push_back({"machine limits [mm]", point_text(limits->min_mm) + " .. " + point_text(limits->max_mm)});
+    rep.scene_title = "Path: the arc, the given points, the centre and the relative frame (x' towards r1, z' along n)";
+    add_arc_motion(rep, arc, timing, rows, "phi", "relative", feed ? &*feed : nullptr, feed_samples);
+    rep.polylines.push_back(labelled_points("given points r1, r2, r3", {r1, r2, r3}, {"r1", "r2", "r3"}, "#000000", 8.0));
+    rep.polylines.push_back(labelled_points("centre r0", {c.centre}, {"r0"}, "#8c564b", 8.0));
+    add_frame_axes(rep, "relative frame", c.to_machine, 0.4 * c.radius_mm);
+    report::write_html_report(rep, o.report);
+    if (o.report == "-") return;
+  }
   if (o.motion.csv) {
     if (angular) print_angular_csv(rows);
     else print_feed_csv(feed_samples);
@@ -148,7 +182,9 @@ void register_arc_command(CLI::App& app, int& exit_code) {
   cmd->add_option("P3", opts->p3, "end point x,y,z [mm]")->required();
   cmd->add_flag("--full", opts->full, "motion type 2: the full circle from P1 through P2, P3 back to P1");
   add_motion_options(cmd, opts->motion);
+  add_report_option(cmd, opts->report);
   cmd->footer("Example:\n  kontur arc 110,100,50 100,110,50 90,100,50 --omega 0.5 --steps 4\n"
+              "  kontur arc 110,100,50 100,110,50 90,100,50 --omega 0.5 --steps 4 --report arc.html\n"
               "  kontur arc 100,200,300 200,250,310 260,180,400 --feed 600 --period 0.001 --csv\n"
               "Exit codes: 0 success, 1 invalid input (points, values, limits), 2 wrong command line.");
   cmd->callback([opts, &exit_code]() {

@@ -3,6 +3,7 @@
 // the arc length by quadrature, and Kontur's constant-feed mode (--feed F --period T).
 #include "arc_output.hpp"
 #include "commands.hpp"
+#include "report_output.hpp"
 
 #include <kontur/arc_motion.hpp>
 #include <kontur/conic_through_points.hpp>
@@ -22,6 +23,7 @@ struct ConicCommandOptions {
   std::array<std::string, 5> p;
   double plane_tolerance_mm = 0.0;
   ArcMotionOptions motion;
+  std::string report;
 };
 
 constexpr double deg = 180.0 / std::numbers::pi;
@@ -75,6 +77,52 @@ void run_conic(const ConicCommandOptions& o) {
   const char* seen_from_z = normal.z() > 0.0 ? "counter-clockwise" : normal.z() < 0.0 ? "clockwise" : "edge-on";
   const bool has_axes = k.type == ConicType::ellipse || k.type == ConicType::hyperbola || k.type == ConicType::circle;
 
+  if (!o.report.empty()) {
+    report::Report rep;
+    rep.title = fmt::format("kontur conic: arc of a conic through five points ({})", to_string(k.type));
+    rep.subtitle = invocation();
+    std::string given;
+    for (std::size_t j = 0; j < 5; ++j) given += fmt::format("{}r{} = {}", j ? ", " : "", j + 1, point_text(r[j]));
+    rep.summary = {{"given points [mm]", given},
+                   {"type", to_string(k.type)},
+                   {"eccentricity e", num(k.eccentricity)},
+                   {"focal parameter p", num(k.focal_parameter_mm) + " mm"}};
+    if (has_axes) {
+      rep.summary.push_back({"semi-axes a, b; focal distance c", fmt::format("{} mm, {} mm; {} mm", num(k.a_mm), num(k.b_mm), num(k.c_mm))});
+      rep.summary.push_back({"centre", point_text(k.centre) + " mm"});
+    }
+    rep.summary.push_back({"vertex", point_text(k.vertex) + " mm"});
+    rep.summary.push_back({"foci", fmt::format("{} and {} mm", point_text(k.foci[0]), point_text(k.foci[1]))});
+    rep.summary.push_back({"focal frame origin (focus used)", point_text(k.focus) + " mm"});
+    rep.summary.push_back({"polar equation", fmt::format("rho = {} / (1 - {} cos phi) [mm]", num(k.focal_parameter_mm), num(k.eccentricity))});
+    rep.summary.push_back({"swept focal angle theta15", angle_text(k.theta15_rad)});
+    rep.summary.push_back({"arc length l15", fmt::format("{} mm (Gauss-Kronrod, error estimate {:.2g} mm)", num(len.length_mm, 13), len.error_estimate_mm)});
+    rep.summary.push_back({"direction", fmt::format("counter-clockwise about the normal ({} seen from +z)", seen_from_z)});
+    rep.summary.push_back({"plane distance of r4, r5", fmt::format("{} mm (tolerance {} mm)", num(k.plane_distance_mm, 3), num(k.plane_tolerance_mm, 3))});
+    if (timing) {
+      rep.summary.push_back({"problem type", o.motion.omega ? "1: omega given, t = theta15 / omega" : "2: t given, omega = theta15 / t"});
+      rep.summary.push_back({"omega, t, N", fmt::format("{} rad/s, {} s, {}", num(timing->omega_rad_s), num(timing->time_s), timing->steps)});
+      rep.summary.push_back({"path speed", fmt::format("mean {} mm/s, from {} to {} mm/s", num(timing->mean_speed_mm_s),
+                                                        num(speeds->min_mm_s, 7), num(speeds->max_mm_s, 7))});
+    }
+    if (feed)
+      rep.summary.push_back({"constant feed", fmt::format("F = {} mm/min, T = {} s: {} mm per period, {} periods, t = {} s",
+                                                          num(feed->feed_mm_min()), num(feed->period_s()),
+                                                          num(feed->step_mm()), feed_samples.size() - 1, num(feed->time_s()))});
+    if (limits) rep.summary.push_back({"machine limits [mm]", point_text(limits->min_mm) + " .. " + point_text(limits->max_mm)});
+    rep.scene_title = "Path: the conic arc, the given points, the foci (and centre) and the focal frame (origin the focus, z' the normal)";
+    add_arc_motion(rep, arc, timing, rows, "theta", "focal", feed ? &*feed : nullptr, feed_samples);
+    rep.polylines.push_back(labelled_points("given points r1..r5", {r.begin(), r.end()}, {"r1", "r2", "r3", "r4", "r5"}, "#000000", 8.0));
+    if (k.type == ConicType::ellipse || k.type == ConicType::hyperbola)
+      rep.polylines.push_back(labelled_points("foci", {k.foci[0], k.foci[1]}, {"F1", "F2"}, "#8c564b", 8.0));
+    else
+      rep.polylines.push_back(labelled_points("focus", {k.foci[0]}, {"F"}, "#8c564b", 8.0));
+    if (has_axes) rep.polylines.push_back(labelled_points("centre", {k.centre}, {"C"}, "#e377c2", 8.0));
+    rep.polylines.push_back(labelled_points("vertex", {k.vertex}, {"V"}, "#17becf", 7.0));
+    add_frame_axes(rep, "focal frame", k.focal_to_machine, 0.3 * k.extent_mm);
+    report::write_html_report(rep, o.report);
+    if (o.report == "-") return;
+  }
   if (o.motion.csv) {
     if (angular) print_angular_csv(rows);
     else print_feed_csv(feed_samples);
@@ -209,8 +257,11 @@ void register_conic_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--plane-tolerance", opts->plane_tolerance_mm,
                   "largest distance [mm] of P4, P5 from the plane of P1, P2, P3 (default 1e-9 x the extent)");
   add_motion_options(cmd, opts->motion);
+  add_report_option(cmd, opts->report);
   cmd->footer("Example:\n  kontur conic 105,200,300 104,201.08,301.44 103,201.44,301.92 100,201.8,302.4 "
               "96,201.08,301.44 --omega 0.5 --steps 4\n"
+              "  kontur conic 105,200,300 104,201.08,301.44 103,201.44,301.92 100,201.8,302.4 "
+              "96,201.08,301.44 --omega 0.5 --steps 4 --report conic.html\n"
               "Exit codes: 0 success, 1 invalid input (points, values, limits), 2 wrong command line.");
   cmd->callback([opts, &exit_code]() {
     run_conic(*opts);

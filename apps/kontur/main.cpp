@@ -1,5 +1,6 @@
 // The `kontur` command: one subcommand per job, the library does the work.
 #include "commands.hpp"
+#include "report_output.hpp"
 
 #include <kontur/error.hpp>
 #include <kontur/version.hpp>
@@ -22,8 +23,10 @@ int main(int argc, char** argv) {
              "  kontur check program.ngc\n"
              "G-code: RS274 core with LinuxCNC, Fanuc and Sinumerik extensions; Kontur's own conic block is\n"
              "  CONIC X- Y- Z- I1=- J1=- K1=- I2=- J2=- K2=- I3=- J3=- K3=- (see `kontur check --help`).\n"
+             "  kontur spline examples/curves/seed_example1.json --report spline.html   (open it in a browser)\n"
              "Run `kontur SUBCOMMAND --help` for the options of each subcommand.");
   int exit_code = exit_ok;
+  set_invocation(argc, argv);
   register_spline_command(app, exit_code);
   register_machine_command(app, exit_code);
   register_arc_command(app, exit_code);

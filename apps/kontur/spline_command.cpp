@@ -2,6 +2,7 @@
 // Kontur's Gauss-Kronrod and by the Simpson-Runge method of seed 000 with evaluation counts, and
 // with --step the forward-difference table of the lower level.
 #include "commands.hpp"
+#include "report_output.hpp"
 
 #include <kontur/error.hpp>
 #include <kontur/forward_difference.hpp>
@@ -13,7 +14,9 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <memory>
 
 namespace kontur::app {
@@ -28,6 +31,7 @@ struct SplineOptions {
   double feed_mm_min = 0.0;
   double period_s = 1e-3;
   bool json = false;
+  std::string report;
 };
 
 // Prints a double compactly and exactly enough to read back (shortest round-trip form), with
@@ -38,6 +42,114 @@ std::string num(double v) {
 }
 
 const char* kAxis[4] = {"x", "y", "z", "w"};
+
+// The report of `kontur spline --report`: the curve coloured by its curvature, the control
+// polygon, the span boundaries, the forward-difference points (--step), curvature and parametric
+// speed against u, the span table and the summary.
+void write_spline_report(const SplineOptions& o, const NurbsCurve& curve, const SpanPolynomialCurve& spans,
+                         const LengthResult& gk, const LengthResult& s1, const LengthResult& s2,
+                         const std::vector<std::pair<Interpolator, FeedFluctuation>>& fluct) {
+  report::Report rep;
+  rep.title = fmt::format("kontur spline: {}", o.file);
+  rep.subtitle = invocation();
+  const auto& sp = spans.spans();
+  rep.summary = {
+      {"curve", fmt::format("{} of degree {}, {} control points, {} knots, {} span{}",
+                            curve.rational() ? "NURBS (rational)" : "B-spline (non-rational)", curve.degree(),
+                            curve.points().size(), curve.knots().size(), sp.size(), sp.size() == 1 ? "" : "s")},
+      {"parameter range", fmt::format("u in [{}, {}]", num(curve.u_min()), num(curve.u_max()))}};
+  auto len = [](const LengthResult& r) {
+    return fmt::format("{:.12f} mm (error estimate {:.3g} mm, {} evaluations of |C'(u)|{})", r.length_mm,
+                       r.error_estimate_mm, r.evaluations, r.converged ? "" : ", not converged");
+  };
+  rep.summary.push_back({"length, Gauss-Kronrod", len(gk)});
+  rep.summary.push_back({"length, Simpson-Runge per span", len(s1)});
+  rep.summary.push_back({"length, Simpson-Runge whole curve", len(s2)});
+  for (const auto& [kind, f] : fluct)
+    rep.summary.push_back({fmt::format("feed fluctuation {} at F = {} mm/min, T = {} s", to_string(kind),
+                                       num(o.feed_mm_min), num(o.period_s)),
+                           fmt::format("{} cycles, max {:.3e}, mean {:.3e}, max chord error {:.3e} mm", f.cycles,
+                                       f.max_relative, f.mean_relative, f.max_chord_error_mm)});
+
+  // Dense samples: 64 per span, at most about 20000 in all.
+  const std::size_t per_span = std::clamp<std::size_t>(20000 / std::max<std::size_t>(sp.size(), 1), 4, 64);
+  report::Polyline path;
+  path.name = "curve";
+  path.width_px = 6.0;
+  path.scalar_name = "curvature [1/mm]";
+  report::Series kappa{"curvature", {}, {}, "#1f77b4", false};
+  report::Series speed{"|C'(u)|", {}, {}, "#ff7f0e", false};
+  for (std::size_t i = 0; i < sp.size(); ++i) {
+    for (std::size_t k = 0; k < per_span || (i + 1 == sp.size() && k == per_span); ++k) {
+      const double u = sp[i].u_start + (sp[i].u_end - sp[i].u_start) * static_cast<double>(k) / static_cast<double>(per_span);
+      const Derivatives d = curve.derivatives(u, 2);
+      const double v = d[1].norm();
+      // kappa = |C' x C''| / |C'|^3; 0 where the curve stops (|C'| = 0, no tangent).
+      const double c = v > 1e-300 ? d[1].cross(d[2]).norm() / (v * v * v) : 0.0;
+      const double kap = std::isfinite(c) ? c : 0.0;
+      path.points_mm.push_back(d[0]);
+      path.scalar.push_back(kap);
+      kappa.x.push_back(u);
+      kappa.y.push_back(kap);
+      speed.x.push_back(u);
+      speed.y.push_back(v);
+    }
+  }
+  rep.scene_title = "Curve (coloured by curvature), control polygon and span boundaries";
+  rep.polylines.push_back(std::move(path));
+  report::Polyline polygon;
+  polygon.name = "control polygon";
+  polygon.points_mm = curve.points();
+  polygon.style = report::Style::line_markers;
+  polygon.color = "#7f7f7f";
+  polygon.dashed = true;
+  polygon.width_px = 2.0;
+  if (curve.points().size() <= 60)
+    for (std::size_t i = 0; i < curve.points().size(); ++i) polygon.labels.push_back(fmt::format("P{}", i));
+  rep.polylines.push_back(std::move(polygon));
+  std::vector<Vec3> bounds;
+  for (std::size_t i = 0; i <= sp.size(); ++i) bounds.push_back(curve.point(i < sp.size() ? sp[i].u_start : sp.back().u_end));
+  rep.polylines.push_back(labelled_points("span boundaries (u in the span table)", bounds, {}, "#d62728", 6.0));
+  if (o.step > 0.0) {
+    ForwardDifferenceStepper fd(spans, o.step, o.summation == "compensated" ? Summation::compensated : Summation::plain);
+    report::Polyline pts;
+    pts.name = fmt::format("forward-difference points, h = {}", num(o.step));
+    pts.style = report::Style::markers;
+    pts.color = "#ff7f0e";
+    pts.marker_px = 3.0;
+    do pts.points_mm.push_back(fd.point());
+    while (fd.step());
+    rep.polylines.push_back(std::move(pts));
+  }
+
+  report::Plot pk;
+  pk.title = "Curvature along the curve";
+  pk.x_label = "u";
+  pk.y_label = "curvature [1/mm]";
+  pk.series.push_back(std::move(kappa));
+  rep.plots.push_back(std::move(pk));
+  report::Plot ps;
+  ps.title = "Parametric speed |C'(u)| (mm per unit of u): how unevenly u runs along the curve";
+  ps.x_label = "u";
+  ps.y_label = "|C'(u)| [mm]";
+  ps.series.push_back(std::move(speed));
+  rep.plots.push_back(std::move(ps));
+
+  report::Table table;
+  table.title = "Spans (click a row to mark its start)";
+  table.columns = {"span", "u start", "u end", "x start [mm]", "y start [mm]", "z start [mm]"};
+  for (std::size_t i = 0; i < sp.size(); ++i) {
+    const Vec3 q = curve.point(sp[i].u_start);
+    table.rows.push_back({fmt::format("{}", i), num(sp[i].u_start), num(sp[i].u_end), num(q.x()), num(q.y()), num(q.z())});
+    table.links.push_back({sp[i].u_start, q});
+  }
+  rep.tables.push_back(std::move(table));
+  rep.notes.push_back("The curve is drawn from 64 points per span (fewer for long curves); a line or series with more "
+                      "points than the display budget is decimated keeping, in each of equal runs of samples, the "
+                      "first and the last sample and the smallest and largest value of every coordinate and of the "
+                      "colour (docs/report.md).");
+  report::write_html_report(rep, o.report, {std::filesystem::path(o.file)});
+}
 
 void run_spline(const SplineOptions& o) {
   const NurbsCurve curve = read_curve_json(o.file);
@@ -79,6 +191,12 @@ void run_spline(const SplineOptions& o) {
       fluct.push_back({k, measure_feed_fluctuation(spans, k, o.feed_mm_min / 60.0, o.period_s)});
   }
 
+  if (!o.report.empty()) {
+    std::vector<std::pair<Interpolator, FeedFluctuation>> pairs;
+    for (const auto& f : fluct) pairs.emplace_back(f.kind, f.f);
+    write_spline_report(o, curve, spans, gk, s1, s2, pairs);
+    if (o.report == "-") return;
+  }
   if (o.json) {
     nlohmann::ordered_json j;
     j["file"] = o.file;
@@ -231,7 +349,9 @@ void register_spline_command(CLI::App& app, int& exit_code) {
                   "of Kontur's arc-length-exact one");
   cmd->add_option("--period", opts->period_s, "servo period T [s] for --feed")->capture_default_str();
   cmd->add_flag("--json", opts->json, "print the result as JSON");
+  add_report_option(cmd, opts->report);
   cmd->footer("Examples:\n  kontur spline examples/curves/seed_example1.json --step 0.05\n"
+              "  kontur spline examples/curves/seed_example1.json --step 0.05 --report spline.html\n"
               "  kontur spline examples/curves/seed_example2.json --feed 6000 --period 0.001\n"
               "Exit codes: 0 valid curve, 1 invalid curve or file, 2 wrong command line.");
   cmd->callback([opts, &exit_code]() {

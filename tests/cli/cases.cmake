@@ -112,3 +112,25 @@ kontur_cli_case(conic_coincident 1 "coincide" conic 1,0,0 0,1,0 1,0,0 0,-1,0 2,2
 kontur_cli_case(conic_outside_limits 1 "^kontur: error: r1: x = 105 mm is above the machine limit 104 mm"
                 conic 105,200,300 104,201.08,301.44 103,201.44,301.92 100,201.8,302.4 96,201.08,301.44 --omega 1 --steps 4
                 --limits 0,0,0,104,400,400)
+
+# --report FILE (docs/report.md): written atomically, never over an input, nothing on failure.
+if(KONTUR_BUILD_REPORT)
+  set(report_dir ${CMAKE_CURRENT_BINARY_DIR}/cli-reports)
+  file(MAKE_DIRECTORY ${report_dir})
+  kontur_cli_case(spline_report 0 "249\\.46310991070" spline examples/curves/seed_example1.json --report
+                  ${report_dir}/spline.html)
+  kontur_cli_case(spline_report_refuses_input 1
+                  "^kontur: error: examples/curves/seed_example1\\.json: is an input of this command; refusing to overwrite it"
+                  spline examples/curves/seed_example1.json --report examples/curves/seed_example1.json)
+  kontur_cli_case(arc_report_stdout 0 "^<!DOCTYPE html>.*plotly\\.js v.*kontur-data.*</html>\n$"
+                  arc 110,100,50 100,110,50 90,100,50 --omega 0.5 --steps 4 --report -)
+  kontur_cli_case(conic_report_missing_dir 1 "^kontur: error: .*no/such/dir/c\\.html: the directory .* does not exist"
+                  conic 105,200,300 104,201.08,301.44 103,201.44,301.92 100,201.8,302.4 96,201.08,301.44 --omega 0.5
+                  --steps 4 --report ${report_dir}/no/such/dir/c.html)
+  kontur_cli_case(arc_report_help 0 "--report FILE" arc --help)
+  # Invalid input: exit 1 and no report file at all.
+  add_test(NAME cli_arc_report_invalid_input_writes_nothing
+           COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:kontur_app>;arc;1,1,1;2,2,2;3,3,3;--omega;1;--steps;3;--report;${report_dir}/collinear.html"
+                   -DEXPECT_EXIT=1 "-DEXPECT_REGEX=collinear" -DNO_FILE=${report_dir}/collinear.html
+                   -DWORKDIR=${PROJECT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/run_case.cmake)
+endif()
