@@ -11,6 +11,7 @@ enum ExitCode : int {
   exit_invalid_input = 1,///< the input (curve, program, machine, value) breaks a rule
   exit_usage = 2,        ///< the command line is wrong
   exit_internal = 3,     ///< a bug: please report it
+  exit_check_failed = 4, ///< `kontur run`: setpoints written, but the independent check found a limit exceeded
 };
 
 /// `kontur spline FILE`: validate a curve, print its span polynomials, lengths, differences.
@@ -21,6 +22,9 @@ void register_check_command(CLI::App& app, int& exit_code);
 void register_arc_command(CLI::App& app, int& exit_code);
 /// `kontur conic P1 .. P5 ...`: conic through five points and the motion along it.
 void register_conic_command(CLI::App& app, int& exit_code);
+
+/// `kontur run PROGRAM`: plan a part program on a machine and write its setpoints.
+void register_run_command(CLI::App& app, int& exit_code);
 
 /// `kontur machine [FILE]`: validate a machine file and print the limits in use.
 void register_machine_command(CLI::App& app, int& exit_code);

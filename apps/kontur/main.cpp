@@ -14,7 +14,7 @@ int main(int argc, char** argv) {
   using namespace kontur::app;
   CLI::App app{"kontur: motion interpolation for CNC machines and robots.\n"
                "Exit codes: 0 success, 1 invalid input (file, curve, value), 2 wrong command line, "
-               "3 internal error.",
+               "3 internal error, 4 (run) setpoints outside the limits.",
                "kontur"};
   app.set_version_flag("--version", std::string("kontur ") + kontur::version_string);
   app.require_subcommand(1);
@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   set_invocation(argc, argv);
   register_spline_command(app, exit_code);
   register_machine_command(app, exit_code);
+  register_run_command(app, exit_code);
   register_arc_command(app, exit_code);
   register_conic_command(app, exit_code);
   register_check_command(app, exit_code);

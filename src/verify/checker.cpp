@@ -115,10 +115,21 @@ Report check(const std::vector<Sample>& s, const std::vector<PathMove>& moves, c
   double u_prev = moves[0].curve->u_min();
   std::size_t m_prev = 0;
   for (std::size_t k = 0; k < s.size(); ++k) {
+    // The source line selects the move (searching forward: a program may pass the same place
+    // twice); among consecutive moves of the same line (canned cycles), or where lines are not
+    // known, the nearest of the next few wins.
+    if (moves[m].source_line != s[k].source_line) {
+      for (std::size_t n = m + 1; n < moves.size(); ++n)
+        if (moves[n].source_line == s[k].source_line) {
+          m = n;
+          break;
+        }
+    }
     const Curve* c = moves[m].curve;
     double u = project(*c, s[k].position, c->u_min(), c->u_max());
     double d = (c->point(u) - s[k].position).norm();
     for (std::size_t n = m + 1; n < moves.size() && n <= m + 8; ++n) {
+      if (moves[n].source_line != moves[m].source_line && moves[m].source_line == s[k].source_line) break;
       const Curve& cn = *moves[n].curve;
       const double un = project(cn, s[k].position, cn.u_min(), cn.u_max());
       const double dn = (cn.point(un) - s[k].position).norm();

@@ -134,3 +134,8 @@ if(KONTUR_BUILD_REPORT)
                    -DEXPECT_EXIT=1 "-DEXPECT_REGEX=collinear" -DNO_FILE=${report_dir}/collinear.html
                    -DWORKDIR=${PROJECT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/run_case.cmake)
 endif()
+
+# kontur run (issue 5, in progress): the bundled example passes the independent check.
+kontur_cli_case(run_example 0 "\"passed\": true" run examples/programs/square_arc.ngc -o -)
+kontur_cli_case(run_bad_program 1 "knot_count\\.ngc:[0-9]+:[0-9]+: G0?6\\.2: [0-9]+ knots given" run tests/data/gcode/bad/knot_count.ngc -o /tmp/kontur_cli_run_bad.csv)
+kontur_cli_case(run_refuses_to_overwrite_its_program 1 "square_arc\\.ngc" run examples/programs/square_arc.ngc -o examples/programs/square_arc.ngc)

@@ -43,7 +43,8 @@ struct Report {
 };
 
 /// Checks `samples` (in time order) against `machine` and the path `moves` (in order): each
-/// sample is matched to the nearest of its current move and the next few (samples never go back).
+/// sample is matched to the next move with its source line (samples never go back), and among
+/// moves of one line (or where lines do not match) to the nearest of the next few.
 [[nodiscard]] Report check(const std::vector<Sample>& samples, const std::vector<PathMove>& moves,
                            const Machine& machine);
 
