@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <kontur/helix_arc.hpp>
 #include <kontur/line_segment.hpp>
+#include <kontur/nurbs.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/verify/checker.hpp>
 
@@ -69,6 +70,28 @@ TEST(Checker, CatchesADisturbedSetpointANaNAndAGap) {
   auto short_end = c.samples;
   short_end.pop_back();
   EXPECT_GT(check(short_end, c.moves, m).end_error_mm, 0.0);
+}
+
+// Regression guard: on a NURBS with uneven weights (the curve moves very unevenly in u, as in
+// LinuxCNC's G6_Curva_Delfino with R46 next to R1) a projection from 64 samples over the whole
+// range found a wrong local minimum and reported setpoints 1.39 mm off a path they were on.
+TEST(Checker, ProjectionOnAnUnevenlyWeightedNurbs) {
+  NurbsData d;
+  d.degree = 3;
+  d.knots = {0, 0, 0, 0, 0.3, 0.6, 1, 1, 1, 1};
+  d.points = {{0, 0, 0}, {10, 5, 0}, {20, -5, 0}, {30, 10, 0}, {40, 0, 0}, {50, 3, 0}};
+  d.weights = {1, 46, 1, 0.03, 34, 1};
+  auto curve = std::make_shared<NurbsCurve>(d);
+  const Machine m = default_machine();
+  plan::MotionPlanner p(m);
+  p.push({curve, 100.0, false, 1});
+  p.finish();
+  std::vector<Sample> samples;
+  plan::Setpoint sp;
+  while (p.next(sp)) samples.push_back({sp.t_s, sp.position, sp.source_line});
+  const Report r = check(samples, {{curve.get(), 1}}, m);
+  EXPECT_LE(r.max_path_error_mm, 1e-9);
+  EXPECT_EQ(r.end_error_mm, 0.0);
 }
 
 }  // namespace

@@ -10,35 +10,45 @@ namespace {
 
 constexpr double kRelative = 1e-6;  // limits may be met, not exceeded by more than this
 
-// Closest parameter on a curve to p, near u_hint: coarse sampling of [lo, hi], then Newton on
-// (C(u) - p) . C'(u) = 0, bracketed.
-double project(const Curve& c, const Vec3& p, double lo, double hi) {
-  double best_u = lo, best_d = (c.point(lo) - p).squaredNorm();
-  const int n = 64;
-  for (int k = 1; k <= n; ++k) {
-    const double u = lo + (hi - lo) * k / n;
-    const double d = (c.point(u) - p).squaredNorm();
-    if (d < best_d) {
-      best_d = d;
-      best_u = u;
-    }
-  }
-  double a = std::max(lo, best_u - (hi - lo) / n), b = std::min(hi, best_u + (hi - lo) / n);
-  double u = best_u;
-  for (int i = 0; i < 50; ++i) {
+// Newton on (C(u) - p) . C'(u) = 0 in the bracket [a, b], from u.
+double refine(const Curve& c, const Vec3& p, double a, double b, double u) {
+  for (int i = 0; i < 60; ++i) {
     const Derivatives d = c.derivatives(u, 2);
     const Vec3 r = d[0] - p;
     const double f = r.dot(d[1]), fp = d[1].squaredNorm() + r.dot(d[2]);
     if (f > 0.0) b = u; else a = u;
     double next = fp > 0.0 ? u - f / fp : 0.5 * (a + b);
     if (!(next > a && next < b)) next = 0.5 * (a + b);
-    if (std::abs(next - u) <= 1e-15 * std::max(1.0, std::abs(u))) {
-      u = next;
-      break;
-    }
+    if (std::abs(next - u) <= 1e-15 * std::max(1.0, std::abs(u))) return next;
     u = next;
   }
   return u;
+}
+
+// Closest parameter on a curve to p: 16 samples on every span (a NURBS with uneven weights
+// moves very unevenly in u), Newton around the best, and Newton around `u_hint` (the previous
+// setpoint's parameter: setpoints advance along the move); the closer of the two wins.
+double project(const Curve& c, const Vec3& p, double u_hint) {
+  const std::vector<double> bp = c.breakpoints();
+  double best_u = c.u_min(), best_d = (c.point(best_u) - p).squaredNorm(), step = c.u_max() - c.u_min();
+  for (std::size_t i = 0; i + 1 < bp.size(); ++i) {
+    const double h = (bp[i + 1] - bp[i]) / 16.0;
+    for (int k = 0; k <= 16; ++k) {
+      const double u = bp[i] + h * k;
+      const double d = (c.point(u) - p).squaredNorm();
+      if (d < best_d) {
+        best_d = d;
+        best_u = u;
+        step = h;
+      }
+    }
+  }
+  double u1 = refine(c, p, std::max(c.u_min(), best_u - step), std::min(c.u_max(), best_u + step), best_u);
+  const double h = (c.u_max() - c.u_min()) * 1e-3;
+  const double u2 = refine(c, p, std::max(c.u_min(), u_hint - h), std::min(c.u_max(), u_hint + 64 * h),
+                           std::clamp(u_hint, c.u_min(), c.u_max()));
+  if ((c.point(u2) - p).squaredNorm() < (c.point(u1) - p).squaredNorm()) u1 = u2;
+  return u1;
 }
 
 }  // namespace
@@ -126,12 +136,12 @@ Report check(const std::vector<Sample>& s, const std::vector<PathMove>& moves, c
         }
     }
     const Curve* c = moves[m].curve;
-    double u = project(*c, s[k].position, c->u_min(), c->u_max());
+    double u = project(*c, s[k].position, m == m_prev && k > 0 ? u_prev : c->u_min());
     double d = (c->point(u) - s[k].position).norm();
     for (std::size_t n = m + 1; n < moves.size() && n <= m + 8; ++n) {
       if (moves[n].source_line != moves[m].source_line && moves[m].source_line == s[k].source_line) break;
       const Curve& cn = *moves[n].curve;
-      const double un = project(cn, s[k].position, cn.u_min(), cn.u_max());
+      const double un = project(cn, s[k].position, cn.u_min());
       const double dn = (cn.point(un) - s[k].position).norm();
       if (dn < d || (dn <= d && un > cn.u_min())) {
         m = n;
