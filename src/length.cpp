@@ -219,9 +219,6 @@ ArcLengthTable::ArcLengthTable(const Curve& curve, double rel_tol) : curve_(&cur
       level_.push_back(static_cast<unsigned char>(r.level));
     });
   });
-  speed_.reserve(u_.size());
-  for (const double u : u_) speed_.push_back(curve.speed(u));
-  build_evaluations_ += static_cast<long>(u_.size());
 }
 
 double ArcLengthTable::s_of_u(double u) const noexcept {

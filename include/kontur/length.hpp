@@ -78,7 +78,6 @@ private:
   const Curve* curve_;
   std::vector<double> u_;      // interval ends, u_[0] = u_min
   std::vector<double> s_;      // arc length at u_[k] [mm]
-  std::vector<double> speed_;  // |C'(u_[k])|
   std::vector<unsigned char> level_;  // Patterson level accepted on interval k
   long build_evaluations_ = 0;
 };

@@ -35,6 +35,11 @@ struct Machine {
   [[nodiscard]] const AxisLimits* axis(char name) const noexcept;
 };
 
+/// Coordinate index of a linear axis letter: X = 0, Y = 1, Z = 2; -1 for any other letter.
+[[nodiscard]] constexpr int linear_axis_index(char name) noexcept {
+  return name == 'X' ? 0 : name == 'Y' ? 1 : name == 'Z' ? 2 : -1;
+}
+
 /// Kontur's default machine (a 3-axis mill): X Y Z 200 mm/s, 2000 mm/s^2, 50000 mm/s^3; path
 /// feed 10000 mm/min, rapid 12000 mm/min; chord tolerance 1 um; G64 tolerance 10 um; 1 ms.
 [[nodiscard]] Machine default_machine();

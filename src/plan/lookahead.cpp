@@ -90,8 +90,8 @@ PathLimits move_limits(const MoveGeometry& move, const Machine& machine, int sam
     normal = normal.norm() > 0.0 ? Vec3(normal / normal.norm()) : Vec3::Zero();
     const double share = kappa > 0.0 ? 0.5 : 1.0;  // half of each budget on curves
     for (const AxisLimits& axis : machine.axes) {
-      if (axis.rotary) continue;  // X Y Z carry the path
-      const int i = axis.name == 'X' ? 0 : axis.name == 'Y' ? 1 : 2;
+      const int i = linear_axis_index(axis.name);
+      if (i < 0) continue;  // rotary axes do not carry the path
       const double ti = std::abs(t[i]), ni = std::abs(normal[i]);
       if (ti > 0.0) {
         l.max_velocity = std::min(l.max_velocity, axis.max_velocity / ti);
@@ -106,7 +106,7 @@ PathLimits move_limits(const MoveGeometry& move, const Machine& machine, int sam
     }
     for (char missing : {'X', 'Y', 'Z'}) {
       // An axis the machine does not have cannot move.
-      const int i = missing == 'X' ? 0 : missing == 'Y' ? 1 : 2;
+      const int i = linear_axis_index(missing);
       if (machine.axis(missing) == nullptr && std::abs(t[i]) > 1e-12) l.max_velocity = 0.0;
     }
     if (kappa > 0.0)
@@ -136,8 +136,8 @@ double junction_limit(const Derivatives& end_in, const Derivatives& start_out, c
   double v = kInf;
   const double T = machine.servo_period_s;
   for (const AxisLimits& axis : machine.axes) {
-    if (axis.rotary) continue;
-    const int i = axis.name == 'X' ? 0 : axis.name == 'Y' ? 1 : 2;
+    const int i = linear_axis_index(axis.name);
+    if (i < 0) continue;  // rotary axes do not carry the path
     if (std::abs(dt[i]) > 1e-9) v = std::min(v, axis.max_jerk * T * T / std::abs(dt[i]));
     if (std::abs(dk[i]) > 1e-9) v = std::min(v, std::sqrt(axis.max_jerk * T / std::abs(dk[i])));
   }

@@ -89,8 +89,8 @@ Report check(const std::vector<Sample>& s, const std::vector<PathMove>& moves, c
   for (std::size_t k = 1; k < s.size(); ++k)
     if (std::abs((s[k].t_s - s[k - 1].t_s) - T) > 1e-9 * T + 4e-16 * std::abs(s[k].t_s)) r.uniform_time = false;
   for (const AxisLimits& ax : machine.axes) {
-    if (ax.rotary) continue;
-    const int i = ax.name == 'X' ? 0 : ax.name == 'Y' ? 1 : 2;
+    const int i = linear_axis_index(ax.name);
+    if (i < 0) continue;  // rotary axes do not carry the path
     for (std::size_t k = 1; k < s.size(); ++k) {
       const double v = std::abs(s[k].position[i] - s[k - 1].position[i]) / T / ax.max_velocity;
       if (v > r.max_velocity_ratio) {
