@@ -28,27 +28,29 @@ double refine(const Curve& c, const Vec3& p, double a, double b, double u) {
 // Closest parameter on a curve to p: 16 samples on every span (a NURBS with uneven weights
 // moves very unevenly in u), Newton around the best, and Newton around `u_hint` (the previous
 // setpoint's parameter: setpoints advance along the move); the closer of the two wins.
-double project(const Curve& c, const Vec3& p, double u_hint) {
-  const std::vector<double> bp = c.breakpoints();
+double project(const Curve& c, const std::vector<double>& bp, const Vec3& p, double u_hint) {
+  // Setpoints advance along the move: the local refinement from the previous parameter lands on
+  // the path almost always, and the global search is done only when it does not.
+  const double h = (c.u_max() - c.u_min()) * 1e-3;
+  const double u_local = refine(c, p, std::max(c.u_min(), u_hint - h), std::min(c.u_max(), u_hint + 64 * h),
+                                std::clamp(u_hint, c.u_min(), c.u_max()));
+  const double d_local = (c.point(u_local) - p).squaredNorm();
+  if (d_local <= 1e-24) return u_local;  // within 1e-12 mm
   double best_u = c.u_min(), best_d = (c.point(best_u) - p).squaredNorm(), step = c.u_max() - c.u_min();
   for (std::size_t i = 0; i + 1 < bp.size(); ++i) {
-    const double h = (bp[i + 1] - bp[i]) / 16.0;
+    const double hs = (bp[i + 1] - bp[i]) / 16.0;
     for (int k = 0; k <= 16; ++k) {
-      const double u = bp[i] + h * k;
+      const double u = bp[i] + hs * k;
       const double d = (c.point(u) - p).squaredNorm();
       if (d < best_d) {
         best_d = d;
         best_u = u;
-        step = h;
+        step = hs;
       }
     }
   }
-  double u1 = refine(c, p, std::max(c.u_min(), best_u - step), std::min(c.u_max(), best_u + step), best_u);
-  const double h = (c.u_max() - c.u_min()) * 1e-3;
-  const double u2 = refine(c, p, std::max(c.u_min(), u_hint - h), std::min(c.u_max(), u_hint + 64 * h),
-                           std::clamp(u_hint, c.u_min(), c.u_max()));
-  if ((c.point(u2) - p).squaredNorm() < (c.point(u1) - p).squaredNorm()) u1 = u2;
-  return u1;
+  const double u_global = refine(c, p, std::max(c.u_min(), best_u - step), std::min(c.u_max(), best_u + step), best_u);
+  return (c.point(u_global) - p).squaredNorm() < d_local ? u_global : u_local;
 }
 
 }  // namespace
@@ -121,6 +123,12 @@ Report check(const std::vector<Sample>& s, const std::vector<PathMove>& moves, c
   r.end_error_mm = (s.back().position - last.point(last.u_max())).norm();
   // Each setpoint lies on the current move or a later one (setpoints never go back); the next
   // move takes over once it is at least as close (a setpoint may skip a move shorter than a cycle).
+  // Breakpoints of each move, computed once (the projection samples every span).
+  std::vector<std::vector<double>> breakpoints(moves.size());
+  auto spans_of = [&](std::size_t i) -> const std::vector<double>& {
+    if (breakpoints[i].empty()) breakpoints[i] = moves[i].curve->breakpoints();
+    return breakpoints[i];
+  };
   std::size_t m = 0;
   double u_prev = moves[0].curve->u_min();
   std::size_t m_prev = 0;
@@ -136,12 +144,12 @@ Report check(const std::vector<Sample>& s, const std::vector<PathMove>& moves, c
         }
     }
     const Curve* c = moves[m].curve;
-    double u = project(*c, s[k].position, m == m_prev && k > 0 ? u_prev : c->u_min());
+    double u = project(*c, spans_of(m), s[k].position, m == m_prev && k > 0 ? u_prev : c->u_min());
     double d = (c->point(u) - s[k].position).norm();
     for (std::size_t n = m + 1; n < moves.size() && n <= m + 8; ++n) {
       if (moves[n].source_line != moves[m].source_line && moves[m].source_line == s[k].source_line) break;
       const Curve& cn = *moves[n].curve;
-      const double un = project(cn, s[k].position, cn.u_min());
+      const double un = project(cn, spans_of(n), s[k].position, cn.u_min());
       const double dn = (cn.point(un) - s[k].position).norm();
       if (dn < d || (dn <= d && un > cn.u_min())) {
         m = n;
