@@ -1,5 +1,6 @@
 #include <kontur/error.hpp>
 #include <kontur/helix_arc.hpp>
+#include <kontur/length.hpp>
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
@@ -9,12 +10,17 @@
 
 namespace kontur {
 
-HelixArc::HelixArc(const CircleFrame& frame, double radius_mm, double sweep_rad, double rise_mm)
-    : frame_(frame), radius_(radius_mm), sweep_(sweep_rad), rise_(rise_mm) {
+HelixArc::HelixArc(const CircleFrame& frame, double radius_mm, double sweep_rad, double rise_mm,
+                   double radius_change_mm)
+    : frame_(frame), radius_(radius_mm), sweep_(sweep_rad), rise_(rise_mm), radius_change_(radius_change_mm) {
   if (!(std::isfinite(radius_mm) && radius_mm > 0.0))
     throw InputError("arc-radius", fmt::format("arc radius {} mm: must be finite and > 0", radius_mm));
   if (!(std::isfinite(sweep_rad) && sweep_rad > 0.0))
     throw InputError("arc-sweep", fmt::format("arc sweep {} rad: must be finite and > 0", sweep_rad));
+  if (!(std::isfinite(radius_change_mm) && std::abs(radius_change_mm) < radius_mm))
+    throw InputError("arc-radius-change",
+                     fmt::format("arc radius change {} mm: must be finite and smaller than the radius {} mm",
+                                 radius_change_mm, radius_mm));
   if (!std::isfinite(rise_mm)) throw InputError("arc-rise", fmt::format("helix rise {} mm: must be finite", rise_mm));
   const double err = std::max({std::abs(frame.e1.norm() - 1.0), std::abs(frame.e2.norm() - 1.0),
                                std::abs(frame.normal.norm() - 1.0), std::abs(frame.e1.dot(frame.e2)),
@@ -29,14 +35,18 @@ Derivatives HelixArc::derivatives(double u, int order) const noexcept {
   const Vec3 radial = c * frame_.e1 + s * frame_.e2;   // d/dphi: tangent = -s e1 + c e2
   const Vec3 tangent = -s * frame_.e1 + c * frame_.e2;
   Derivatives d;
-  d[0] = frame_.centre + radius_ * radial + (rise_ * u) * frame_.normal;
-  if (order >= 1) d[1] = radius_ * sweep_ * tangent + rise_ * frame_.normal;
-  if (order >= 2) d[2] = -radius_ * sweep_ * sweep_ * radial;
-  if (order >= 3) d[3] = -radius_ * sweep_ * sweep_ * sweep_ * tangent;
+  const double r = radius_ + radius_change_ * u, dr = radius_change_, w = sweep_;
+  d[0] = frame_.centre + r * radial + (rise_ * u) * frame_.normal;
+  if (order >= 1) d[1] = dr * radial + r * w * tangent + rise_ * frame_.normal;
+  if (order >= 2) d[2] = 2.0 * dr * w * tangent - r * w * w * radial;
+  if (order >= 3) d[3] = -3.0 * dr * w * w * radial - r * w * w * w * tangent;
   return d;
 }
 
-double HelixArc::length_mm() const noexcept { return std::hypot(radius_ * sweep_, rise_); }
+double HelixArc::length_mm() const noexcept {
+  if (radius_change_ == 0.0) return std::hypot(radius_ * sweep_, rise_);
+  return gauss_kronrod_length(*this).length_mm;
+}
 
 Vec3 HelixArc::point_at_angle(double phi_rad) const noexcept { return point(phi_rad / sweep_); }
 

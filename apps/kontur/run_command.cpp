@@ -64,7 +64,11 @@ bool run_program(const RunOptions& o) {
     };
     gcode::for_each_block(o.program, [&](const gcode::Block& b) {
       auto curve = shared_curve(b);
-      if (!curve) return;  // dwell: not simulated yet
+      if (!curve) {  // a dwell: the motion stops and stays
+        if (b.type == gcode::BlockType::dwell) planner.dwell(b.dwell_s, b.location.line);
+        drain();
+        return;
+      }
       double feed = b.type == gcode::BlockType::rapid ? machine.rapid_feed_mm_s : b.feed.value / 60.0;
       if (b.feed.mode == gcode::FeedMode::inverse_time && b.type != gcode::BlockType::rapid) {
         const auto len = b.length_mm();

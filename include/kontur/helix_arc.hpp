@@ -1,7 +1,8 @@
 #pragma once
 // A circular arc in any plane of space, optionally with a linear rise along the plane's normal
-// (a helix), as a Curve: C(u) = centre + R cos(phi) e1 + R sin(phi) e2 + rise u n, phi = sweep u,
-// u in [0, 1]. It is the geometry of G2/G3 arcs and helices and of the circle through three
+// (a helix), as a Curve: C(u) = centre + r(u) (cos(phi) e1 + sin(phi) e2) + rise u n, phi = sweep u,
+// r(u) = R + dR u, u in [0, 1]. dR (normally 0) lets a G2/G3 arc whose programmed end lies up to the
+// radius tolerance off its circle end exactly there (a slight spiral, as LinuxCNC does). It is the geometry of G2/G3 arcs and helices and of the circle through three
 // points; the frame (centre, e1, e2, n) is the relative frame of the seed monograph.
 #include <kontur/curve.hpp>
 
@@ -22,7 +23,9 @@ public:
   /// @param radius_mm  radius R > 0 [mm]
   /// @param sweep_rad  swept angle [rad], > 0 (counter-clockwise about frame.normal); may exceed 2 pi
   /// @param rise_mm  displacement along frame.normal from start to end [mm] (0 for a plane arc)
-  HelixArc(const CircleFrame& frame, double radius_mm, double sweep_rad, double rise_mm = 0.0);
+  /// @param radius_change_mm  end radius minus start radius [mm] (0 for a circle; |dR| < R)
+  HelixArc(const CircleFrame& frame, double radius_mm, double sweep_rad, double rise_mm = 0.0,
+           double radius_change_mm = 0.0);
 
   [[nodiscard]] double u_min() const noexcept override { return 0.0; }
   [[nodiscard]] double u_max() const noexcept override { return 1.0; }
@@ -33,14 +36,16 @@ public:
   [[nodiscard]] double radius_mm() const noexcept { return radius_; }
   [[nodiscard]] double sweep_rad() const noexcept { return sweep_; }
   [[nodiscard]] double rise_mm() const noexcept { return rise_; }
-  /// Exact length [mm]: sqrt((R sweep)^2 + rise^2).
+  /// End radius minus start radius [mm].
+  [[nodiscard]] double radius_change_mm() const noexcept { return radius_change_; }
+  /// Length [mm]: exactly sqrt((R sweep)^2 + rise^2) when dR = 0, else by adaptive Gauss-Kronrod.
   [[nodiscard]] double length_mm() const noexcept;
   /// Point at angle phi [rad] from the start (and the matching rise).
   [[nodiscard]] Vec3 point_at_angle(double phi_rad) const noexcept;
 
 private:
   CircleFrame frame_;
-  double radius_, sweep_, rise_;
+  double radius_, sweep_, rise_, radius_change_;
 };
 
 }  // namespace kontur

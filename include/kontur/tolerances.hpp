@@ -43,7 +43,8 @@ inline constexpr double forward_difference_drift_relative = 1e-9;
 /// Arc radius check of a control: the distances from the centre to the start and to the end of a
 /// G2/G3 arc (or |R| and the I J K radius when both are given) may differ by at most
 /// max(gcode_arc_radius_absolute_mm, gcode_arc_radius_relative * radius). The curve uses the
-/// start radius; its end is then within this distance of the programmed end point.
+/// start radius and its radius changes linearly with the angle to the end radius (a slight spiral,
+/// as LinuxCNC does), so that the arc ends exactly at the programmed end point.
 inline constexpr double gcode_arc_radius_absolute_mm = 0.005;
 /// Relative part of the arc radius check (0.1 % of the radius).
 inline constexpr double gcode_arc_radius_relative = 1e-3;
@@ -106,5 +107,41 @@ inline constexpr double conic_degenerate_relative = 1e-12;
 inline constexpr double conic_length_relative = 1e-12;
 /// The last step of the angular modes reaches the end point to this, relative to the extent.
 inline constexpr double arc_end_point_relative = 1e-12;
+
+// ---- motion planner: how each axis's budget is shared (kontur/plan)
+// An axis's acceleration along a curve is t_i s'' + K_i s'^2 and its jerk
+// t_i s''' + 3 K_i s' s'' + K'_i s'^3 (t the unit tangent, K = kappa n the curvature vector and
+// K' its derivative along the path, all per axis); at a junction that is not smooth, setpoints a
+// period apart see a direction jump as a velocity jump and a curvature jump as an acceleration jump.
+// Each term gets a share of the axis's jerk limit; the shares of any one place add up to at most 1.
+/// Share of an axis's jerk for the cross term 3 K_i v a (caps the path acceleration on curves).
+inline constexpr double plan_cross_jerk_share = 0.2;
+/// Share of an axis's jerk for the curvature-change term K'_i v^3 (caps the speed on curves).
+inline constexpr double plan_curvature_rate_jerk_share = 0.2;
+/// Share of an axis's jerk a junction may use when its direction changes by less than
+/// plan_small_corner (per axis, |t2 - t1|) or only its curvature jumps: its speed matters, and the
+/// moves on both sides plan with the rest.
+inline constexpr double plan_smooth_junction_jerk_share = 0.5;
+/// ... and the share of a real corner (a near stop anyway, so the moves keep most of their jerk).
+inline constexpr double plan_corner_jerk_share = 0.05;
+/// A junction direction change (per axis, |t2 - t1|) below which a corner counts as small.
+inline constexpr double plan_small_corner = 0.05;
+/// Tangents or curvature vectors that agree to this (per axis; [1] and [1/mm]) make a smooth junction.
+inline constexpr double plan_junction_smooth = 1e-9;
+/// Fractions of an axis's acceleration the centripetal part may take on a curve; the planner takes
+/// the one that gives the shortest time for the piece (the rest is left for the path acceleration).
+inline constexpr double plan_centripetal_shares[] = {0.5, 0.7, 0.9};
+/// Samples per span of a curve when its geometry (tangent, curvature, curvature change) is
+/// bounded (more where the tangent turns by over 0.2 rad between samples), and the share of each
+/// sampled quantity's range its maximum is raised by (a smooth peak between samples turned by
+/// 0.2 rad lies about 1 % of the range above them; constant quantities stay exact).
+inline constexpr int plan_samples_per_span = 16;
+inline constexpr double plan_sample_margin = 0.05;
+/// The planner plans with every axis limit lowered by this share. The check differentiates the
+/// setpoints: a position noise e [mm] (the arc-length inverse is accurate to about 1e-13 of a
+/// move's length) shows as 8 e / T^3 of jerk, 1e-6 of the limit already at e = 1e-11 mm, T = 1 ms.
+inline constexpr double plan_limit_safety = 1e-4;
+/// Neighbouring spans of a curve whose speed caps are within this factor are planned as one piece.
+inline constexpr double plan_piece_cap_ratio = 1.5;
 
 }  // namespace kontur::tolerances

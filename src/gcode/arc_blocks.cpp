@@ -106,7 +106,7 @@ void Reader::Impl::arc(bool clockwise, const Vec3& to, int col) {
   b.start = to_machine(pos);
   b.end = to_machine(to);
   b.feed = feed;
-  b.geometry.emplace<HelixArc>(at(col, word, [&] { return HelixArc(mf, r_start, sweep, rise); }));
+  b.geometry.emplace<HelixArc>(at(col, word, [&] { return HelixArc(mf, r_start, sweep, rise, r_end - r_start); }));
   emit(std::move(b));
   pos = to;
 }

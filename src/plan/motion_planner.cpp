@@ -1,31 +1,153 @@
 #include <kontur/differential.hpp>
 #include <kontur/plan/motion_planner.hpp>
+#include <kontur/tolerances.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace kontur::plan {
 
-MotionPlanner::MotionPlanner(const Machine& machine) : machine_(machine), period_(machine.servo_period_s) {}
+std::vector<MovePiece> split_move(const Curve& c, const ArcLengthTable& table, double feed_mm_s,
+                                  const Machine& machine) {
+  const std::vector<double> bp = c.breakpoints();
+  const std::size_t spans = bp.size() - 1;
+  std::vector<MovePiece> pieces;
+  double lo = 0.0, hi = 0.0;  // range of the span caps [mm/s] in the current piece
+  for (std::size_t k = 0; k < spans; ++k) {
+    const PathGeometry g = path_geometry(c, bp[k], bp[k + 1]);
+    const double cap = speed_cap(g, feed_mm_s, machine, tolerances::plan_centripetal_shares[0]);
+    if (k > 0) {
+      const Junction j = junction(c.derivatives_left(bp[k], 2), c.derivatives(bp[k], 2), machine);
+      const double new_lo = std::min(lo, cap), new_hi = std::max(hi, cap);
+      if (j.jerk_share == 0.0 && !(new_hi > tolerances::plan_piece_cap_ratio * new_lo)) {
+        pieces.back().u1 = bp[k + 1];
+        pieces.back().geometry.merge(g);
+        lo = new_lo;
+        hi = new_hi;
+        continue;
+      }
+      pieces.back().end = j;
+    }
+    MovePiece p;
+    p.u0 = bp[k];
+    p.u1 = bp[k + 1];
+    p.geometry = g;
+    p.end = {std::numeric_limits<double>::infinity(), 0.0};
+    pieces.push_back(p);
+    lo = hi = cap;
+  }
+  // Lengths; a piece of no length (coincident control points) joins the one before it.
+  std::vector<MovePiece> out;
+  for (MovePiece& p : pieces) {
+    p.s0_mm = table.s_of_u(p.u0);
+    p.s1_mm = table.s_of_u(p.u1);
+    if (!out.empty() && !(p.s1_mm > p.s0_mm)) {
+      MovePiece& q = out.back();
+      q.u1 = p.u1;
+      q.s1_mm = p.s1_mm;
+      q.geometry.merge(p.geometry);
+      q.end = {std::min(q.end.velocity, p.end.velocity), std::max(q.end.jerk_share, p.end.jerk_share)};
+      continue;
+    }
+    out.push_back(p);
+  }
+  // A first piece of no length joins the next.
+  if (out.size() > 1 && !(out[0].s1_mm > out[0].s0_mm)) {
+    out[1].u0 = out[0].u0;
+    out[1].s0_mm = out[0].s0_mm;
+    out[1].geometry.merge(out[0].geometry);
+    out.erase(out.begin());
+  }
+  out.back().s1_mm = table.length_mm();
+  return out;
+}
+
+namespace {
+
+// The machine the planner plans with: its axis limits lowered by tolerances::plan_limit_safety
+// (the feeds are the program's and stay).
+Machine planning_machine(Machine m) {
+  constexpr double f = 1.0 - tolerances::plan_limit_safety;
+  for (AxisLimits& a : m.axes) {
+    a.max_velocity *= f;
+    a.max_acceleration *= f;
+    a.max_jerk *= f;
+  }
+  return m;
+}
+
+}  // namespace
+
+MotionPlanner::MotionPlanner(const Machine& machine)
+    : machine_(planning_machine(machine)), period_(machine.servo_period_s) {}
 
 void MotionPlanner::push(const MoveInput& move) {
   auto table = std::make_shared<const ArcLengthTable>(*move.curve);
   const double length = table->length_mm();
   if (!(length > 0.0)) return;
   const Curve& c = *move.curve;
-  MoveConstraint mc;
-  mc.length_mm = length;
-  mc.limits = move_limits({&c, length, move.feed_mm_s}, machine_);
-  const Derivatives start = c.derivatives(c.u_min(), 2);
-  const Derivatives end = c.derivatives_left(c.u_max(), 2);
-  mc.max_end_velocity = move.exact_stop ? 0.0 : mc.limits.max_velocity;
-  // The corner with the move before limits that move's end speed; it is still in the window (the
-  // window's last move is never released before the next one arrives or the program ends).
-  if (last_end_) lookahead_.limit_last_end_velocity(junction_limit(*last_end_, start, machine_));
-  last_end_ = end;
-  pending_.push_back({move.curve, table, move.source_line});
-  lookahead_.push(mc);
+  const std::vector<MovePiece> pieces = split_move(c, *table, move.feed_mm_s, machine_);
+  // The junction with the move before limits that move's end speed and jerk; it is still in the
+  // window (the window's last move is never released before the next one arrives or the
+  // program ends).
+  Junction in{std::numeric_limits<double>::infinity(), 0.0};
+  if (last_end_ && !last_exact_stop_ && !pending_.empty()) {
+    in = junction(*last_end_, c.derivatives(c.u_min(), 2), machine_);
+    Piece& prev = pending_.back();
+    MoveConstraint& mc = lookahead_.back();
+    mc.max_end_velocity = std::min(mc.max_end_velocity, in.velocity);
+    if (in.jerk_share > 0.0) {
+      const PathLimits l = path_limits(prev.geometry, mc.length_mm, prev.feed_mm_s, machine_,
+                                       std::max(prev.start_share, in.jerk_share));
+      mc.limits.max_acceleration = std::min(mc.limits.max_acceleration, l.max_acceleration);
+      mc.limits.max_jerk = std::min(mc.limits.max_jerk, l.max_jerk);
+    }
+  }
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const MovePiece& p = pieces[i];
+    const bool last = i + 1 == pieces.size();
+    Piece piece;
+    piece.curve = move.curve;
+    piece.table = table;
+    piece.u0 = p.u0;
+    piece.u1 = p.u1;
+    piece.s0 = p.s0_mm;
+    piece.s1 = p.s1_mm;
+    piece.source_line = move.source_line;
+    piece.geometry = p.geometry;
+    piece.feed_mm_s = move.feed_mm_s;
+    piece.start_share = i == 0 ? in.jerk_share : pieces[i - 1].end.jerk_share;
+    if (initial_hold_s_ > 0.0) {
+      piece.hold_before_s = initial_hold_s_;
+      initial_hold_s_ = 0.0;
+    }
+    MoveConstraint mc;
+    mc.length_mm = p.s1_mm - p.s0_mm;
+    mc.limits = path_limits(p.geometry, mc.length_mm, move.feed_mm_s, machine_,
+                            std::max(piece.start_share, last ? 0.0 : p.end.jerk_share));
+    mc.max_end_velocity = last ? (move.exact_stop ? 0.0 : mc.limits.max_velocity)
+                               : std::min(mc.limits.max_velocity, p.end.velocity);
+    pending_.push_back(std::move(piece));
+    lookahead_.push(mc);
+  }
+  last_end_ = c.derivatives_left(c.u_max(), 2);
+  last_exact_stop_ = move.exact_stop;
   release_ready();
+}
+
+void MotionPlanner::dwell(double seconds, long source_line) {
+  if (finished_ || !(seconds > 0.0)) return;
+  if (pending_.empty()) {  // before the first move
+    initial_hold_s_ += seconds;
+    initial_hold_line_ = source_line;
+    return;
+  }
+  Piece& p = pending_.back();
+  p.hold_after_s += seconds;
+  p.hold_line = source_line;
+  lookahead_.limit_last_end_velocity(0.0);
+  last_exact_stop_ = true;  // the next move starts from rest
 }
 
 void MotionPlanner::finish() {
@@ -36,9 +158,10 @@ void MotionPlanner::finish() {
 
 void MotionPlanner::release_ready() {
   while (lookahead_.ready()) {
-    Pending p = std::move(pending_.front());
+    Piece p = std::move(pending_.front());
     pending_.pop_front();
-    planned_.push_back({std::move(p.curve), std::move(p.table), lookahead_.pop(), p.source_line});
+    p.profile = lookahead_.pop();
+    planned_.push_back(std::move(p));
   }
 }
 
@@ -50,42 +173,60 @@ bool MotionPlanner::next(Setpoint& out) noexcept {
       return false;
     }
     started_ = true;
-    const Planned& m = planned_.front();
-    u_ = m.curve->u_min();
-    s_ = 0.0;
+    const Piece& m = planned_.front();
+    u_ = m.u0;
+    s_ = m.s0;
+    t_move_ = 0.0;
     last_position_ = m.curve->point(u_);
-    out = {0.0, last_position_, m.profile.sample(0.0).v, m.source_line};
+    const bool holding = m.hold_before_s > 0.0;
+    out = {0.0, last_position_, holding ? 0.0 : m.profile.sample(0.0).v,
+           holding ? initial_hold_line_ : m.source_line};
     return true;
   }
   double t_move = t_move_ + period_;
-  // Move on to the following moves while this cycle lies beyond the current one.
-  while (!planned_.empty() && t_move >= planned_.front().profile.duration()) {
+  // Move on to the following pieces while this cycle lies beyond the current one.
+  while (!planned_.empty() && t_move >= planned_.front().duration()) {
     if (planned_.size() < 2) {
       if (!finished_ || !pending_.empty()) return false;  // wait for the look-ahead
-      // The last move: its end at rest is the last setpoint.
-      const Planned& m = planned_.front();
+      // The last piece: its end at rest is the last setpoint.
+      const Piece& m = planned_.front();
       t_ += period_;
-      last_position_ = m.curve->point(m.curve->u_max());
-      out = {t_, last_position_, 0.0, m.source_line};
+      last_position_ = m.curve->point(m.u1);
+      out = {t_, last_position_, 0.0, m.hold_after_s > 0.0 ? m.hold_line : m.source_line};
       end_given_ = true;
       return true;
     }
-    t_move -= planned_.front().profile.duration();
+    t_move -= planned_.front().duration();
     planned_.pop_front();
-    u_ = planned_.front().curve->u_min();
-    s_ = 0.0;
+    u_ = planned_.front().u0;
+    s_ = planned_.front().s0;
   }
   if (planned_.empty()) return false;
-  const Planned& m = planned_.front();
-  const PathState st = m.profile.sample(t_move);
-  const double speed = m.curve->speed(u_);
-  const double hint = speed > 0.0 ? u_ + (st.s - s_) / speed : u_;
-  u_ = st.s >= m.table->length_mm() ? m.curve->u_max() : m.table->u_after(u_, s_, st.s, hint);
-  s_ = st.s;
+  const Piece& m = planned_.front();
+  const double t_profile = t_move - m.hold_before_s;
+  PathState st;
+  long line = m.source_line;
+  if (t_profile <= 0.0) {
+    line = initial_hold_line_;  // dwelling before the first move
+  } else if (t_profile >= m.profile.duration()) {
+    st.s = m.profile.distance();  // dwelling after the piece
+    line = m.hold_line;
+  } else {
+    st = m.profile.sample(t_profile);
+  }
+  const double s_target = m.s0 + st.s;
+  if (st.s >= m.profile.distance() || s_target >= m.s1) {
+    u_ = m.u1;
+  } else if (s_target > s_) {
+    const double speed = m.curve->speed(u_);
+    const double hint = speed > 0.0 ? u_ + (s_target - s_) / speed : u_;
+    u_ = m.table->u_after(u_, s_, s_target, std::clamp(hint, m.u0, m.u1));
+  }
+  s_ = std::max(s_, s_target);
   t_move_ = t_move;
   t_ += period_;
   last_position_ = m.curve->point(u_);
-  out = {t_, last_position_, st.v, m.source_line};
+  out = {t_, last_position_, st.v, line};
   return true;
 }
 

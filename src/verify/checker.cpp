@@ -16,10 +16,14 @@ double refine(const Curve& c, const Vec3& p, double a, double b, double u) {
     const Derivatives d = c.derivatives(u, 2);
     const Vec3 r = d[0] - p;
     const double f = r.dot(d[1]), fp = d[1].squaredNorm() + r.dot(d[2]);
+    // (rounding can make f exactly zero: u is then the foot of the normal, unless it is a farthest
+    // point or C' vanishes there)
+    if (f == 0.0 && fp > 0.0 && d[1].squaredNorm() > 0.0) return u;
     if (f > 0.0) b = u; else a = u;
     double next = fp > 0.0 ? u - f / fp : 0.5 * (a + b);
-    if (!(next > a && next < b)) next = 0.5 * (a + b);
-    if (std::abs(next - u) <= 1e-15 * std::max(1.0, std::abs(u))) return next;
+    if (!(next >= a && next <= b)) next = 0.5 * (a + b);
+    // A few units in the last place: Newton's step is then rounding noise (it may creep forever).
+    if (std::abs(next - u) <= 1e-14 * std::max(1.0, std::abs(u))) return next;
     u = next;
   }
   return u;
@@ -146,8 +150,12 @@ Report check(const std::vector<Sample>& s, const std::vector<PathMove>& moves, c
     const Curve* c = moves[m].curve;
     double u = project(*c, spans_of(m), s[k].position, m == m_prev && k > 0 ? u_prev : c->u_min());
     double d = (c->point(u) - s[k].position).norm();
-    for (std::size_t n = m + 1; n < moves.size() && n <= m + 8; ++n) {
-      if (moves[n].source_line != moves[m].source_line && moves[m].source_line == s[k].source_line) break;
+    // A setpoint whose line is no move's (a dwell) stays where the motion stopped; one on a known
+    // line looks among the following moves of the same line only.
+    const bool line_known = s[k].source_line != 0;
+    const bool on_line = moves[m].source_line == s[k].source_line;
+    for (std::size_t n = m + 1; n < moves.size() && n <= m + 8 && (on_line || !line_known); ++n) {
+      if (on_line && moves[n].source_line != s[k].source_line) break;
       const Curve& cn = *moves[n].curve;
       const double un = project(cn, spans_of(n), s[k].position, cn.u_min());
       const double dn = (cn.point(un) - s[k].position).norm();
