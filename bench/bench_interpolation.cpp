@@ -1,54 +1,151 @@
-// Cost per setpoint of the interpolators along a NURBS (seed 004's Taylor updates and Kontur's
-// arc-length-exact mode), on the span polynomials of the seed curve and of a 40-span cubic, at
-// about 20,000 cycles per curve. items_per_second = setpoints per second.
+// Cost per setpoint of the interpolators (methods.md section 3: seed 004's first- and
+// second-order Taylor updates, Kontur's default arc-length-exact mode): one advance() by
+// ds = F T = 0.1 mm (6000 mm/min at 1 ms) and the point on the curve, per setpoint.
+// Curves: seed example 1 and 2, a 40-span cubic, the NURBS blocks of the LinuxCNC NURBS programs
+// (../shared/data/gcode/linuxcnc-nurbs, skipped when absent), the conics of methods.md section 5.
+// Counters:
+//   ns_mean    mean cost [ns] over whole passes (no per-call clock), thread CPU time
+//   ns_wall    the same in wall-clock time (higher when other processes share the cores)
+//   x_taylor1  ns_mean over the Taylor first-order ns_mean on the same curves (same process)
+//   ns_p50, ns_p999, ns_max   single calls timed with steady_clock (each includes one clock
+//              read), over each call's fastest of 5 runs (removes preemption by other processes)
+//   ns_max_raw the slowest single call seen at all (preemption included: the OS, not Kontur)
+//   clock_p50  the cost of timing an empty call in this process [ns] (subtract it from ns_p50)
 #include <benchmark/benchmark.h>
+#include <kontur/conic_through_points.hpp>
+#include <kontur/error.hpp>
 #include <kontur/interpolation.hpp>
-#include <kontur/length.hpp>
+#include <kontur/io/curve_json.hpp>
 #include <kontur/span_polynomial.hpp>
 
 #include "support/random_curves.hpp"
-#include "support/seed_curves.hpp"
+#include "support_programs.hpp"
+
+#include <array>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
 
 namespace {
 
 using namespace kontur;
 
-NurbsData curve_data(int which) {
-  if (which == 0) return testing::seed_example(1);
+constexpr double kStepMm = 6000.0 / 60.0 * 1e-3;  // ds = F T [mm]
+constexpr std::array<Interpolator, 3> kKinds{Interpolator::taylor_first_order, Interpolator::taylor_second_order,
+                                              Interpolator::arc_length_exact};
+
+struct CurveSet {
+  std::string name;
+  std::vector<std::shared_ptr<const Curve>> curves;
+};
+
+std::shared_ptr<const Curve> spans_of(const NurbsCurve& c) { return std::make_shared<SpanPolynomialCurve>(c); }
+
+std::vector<CurveSet> curve_sets() {
+  std::vector<CurveSet> sets;
+  for (int i = 1; i <= 2; ++i) {
+    const auto path = std::string(KONTUR_SOURCE_DIR) + "/examples/curves/seed_example" + std::to_string(i) + ".json";
+    sets.push_back({"seed_example" + std::to_string(i), {spans_of(read_curve_json(path))}});
+  }
   testing::RandomCurveOptions o;
   o.min_degree = o.max_degree = 3;
   o.min_points = o.max_points = 43;
   o.repeated_knots = false;
   o.offset_knots = false;
-  return testing::random_nurbs(testing::test_seed(), 42, o);
+  sets.push_back({"cubic40", {spans_of(NurbsCurve(testing::random_nurbs(testing::test_seed(), 42, o)))}});
+  CurveSet all{"linuxcnc_nurbs_all", {}};
+  const auto programs = bench::ngc_files(bench::shared_path("data/gcode/linuxcnc-nurbs"));
+  if (programs.empty()) std::fprintf(stderr, "note: ../shared/data/gcode/linuxcnc-nurbs absent: its rows are skipped\n");
+  for (const auto& p : programs) {
+    try {
+      for (auto& c : bench::program_nurbs(p)) all.curves.push_back(std::shared_ptr<const Curve>(std::move(c.spans)));
+    } catch (const InputError& e) {  // a program Kontur does not read: reported, left out
+      std::fprintf(stderr, "note: %s left out: %s\n", p.filename().string().c_str(), e.what());
+    }
+  }
+  if (!all.curves.empty()) sets.push_back(std::move(all));
+  const std::array<std::pair<const char*, std::array<Vec3, 5>>, 3> conics{{
+      {"ellipse", {Vec3(105, 200, 300), Vec3(104, 201.08, 301.44), Vec3(103, 201.44, 301.92), Vec3(100, 201.8, 302.4),
+                   Vec3(96, 201.08, 301.44)}},
+      {"parabola", {Vec3(96, 202.4, 303.2), Vec3(98, 200.6, 300.8), Vec3(100, 200, 300), Vec3(102, 200.6, 300.8),
+                    Vec3(106, 205.4, 307.2)}},
+      {"hyperbola", {Vec3(108.5, 196.625, 295.5), Vec3(105, 198.65, 298.2), Vec3(104, 200, 300),
+                     Vec3(105, 201.35, 301.8), Vec3(108.5, 203.375, 304.5)}},
+  }};
+  for (const auto& [name, pts] : conics)
+    sets.push_back({name, {std::make_shared<ConicArc>(conic_through_points(pts).curve())}});
+  return sets;
 }
 
-void BM_Interpolator(benchmark::State& state, Interpolator kind, int which) {
-  const NurbsCurve curve(curve_data(which));
-  const SpanPolynomialCurve spans(curve);
-  const double ds = length(spans) / 20000.0;
-  CurveInterpolator ip(spans, kind);
+std::map<std::string, double>& taylor1_ns() {
+  static std::map<std::string, double> m;
+  return m;
+}
+
+void BM_Interpolator(benchmark::State& state, const CurveSet* set, Interpolator kind) {
+  std::vector<CurveInterpolator> ips;
+  for (const auto& c : set->curves) ips.emplace_back(*c, kind);  // tables built here (planning)
   long setpoints = 0;
+  double total_ns = 0.0, total_wall_ns = 0.0;
   for (auto _ : state) {
-    ip.reset();
+    const auto t0 = bench::Clock::now();
+    const double c0 = bench::thread_cpu_ns();
     Vec3 acc = Vec3::Zero();
-    while (!ip.at_end()) {
-      ip.advance(ds);
-      acc += ip.point();
-      ++setpoints;
+    for (auto& ip : ips) {
+      ip.reset();
+      while (!ip.at_end()) {
+        ip.advance(kStepMm);
+        acc += ip.point();
+        ++setpoints;
+      }
     }
     benchmark::DoNotOptimize(acc);
+    total_ns += bench::thread_cpu_ns() - c0;
+    total_wall_ns += bench::ns_between(t0, bench::Clock::now());
   }
   state.SetItemsProcessed(setpoints);
+  // Single calls, timed one by one; five runs, each call's fastest (see repeated_call_times).
+  const bench::RepeatedCallTimes r = bench::repeated_call_times(5, [&](std::vector<double>& ns) {
+    for (auto& ip : ips) {
+      ip.reset();
+      while (!ip.at_end()) {
+        const auto a = bench::Clock::now();
+        ip.advance(kStepMm);
+        const Vec3 p = ip.point();
+        const auto b = bench::Clock::now();
+        benchmark::DoNotOptimize(p);
+        ns.push_back(bench::ns_between(a, b));
+      }
+    }
+  });
+  const bench::CallTimes& t = r.min_of_runs;
+  const double mean = total_ns / static_cast<double>(setpoints);
+  if (kind == Interpolator::taylor_first_order) taylor1_ns()[set->name] = mean;
+  const auto base = taylor1_ns().find(set->name);
+  state.counters["ns_mean"] = mean;
+  state.counters["ns_wall"] = total_wall_ns / static_cast<double>(setpoints);
+  state.counters["x_taylor1"] = base != taylor1_ns().end() ? mean / base->second : 0.0;
+  state.counters["ns_p50"] = t.p50_ns;
+  state.counters["ns_p999"] = t.p999_ns;
+  state.counters["ns_max"] = t.max_ns;
+  state.counters["ns_max_raw"] = r.raw_max_ns;
+  state.counters["clock_p50"] = bench::clock_overhead().p50_ns;
 }
 
 }  // namespace
 
-BENCHMARK_CAPTURE(BM_Interpolator, taylor1_seed1, Interpolator::taylor_first_order, 0);
-BENCHMARK_CAPTURE(BM_Interpolator, taylor2_seed1, Interpolator::taylor_second_order, 0);
-BENCHMARK_CAPTURE(BM_Interpolator, exact_seed1, Interpolator::arc_length_exact, 0);
-BENCHMARK_CAPTURE(BM_Interpolator, taylor1_cubic40, Interpolator::taylor_first_order, 1);
-BENCHMARK_CAPTURE(BM_Interpolator, taylor2_cubic40, Interpolator::taylor_second_order, 1);
-BENCHMARK_CAPTURE(BM_Interpolator, exact_cubic40, Interpolator::arc_length_exact, 1);
-
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  static const std::vector<CurveSet> sets = curve_sets();
+  for (const auto& s : sets)
+    for (const Interpolator kind : kKinds) {
+      const std::string name = "BM_Interpolator/" + s.name + "/" + to_string(kind);
+      benchmark::RegisterBenchmark(name.c_str(), BM_Interpolator, &s, kind);
+    }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

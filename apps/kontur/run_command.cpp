@@ -9,7 +9,7 @@
 #include <kontur/io/setpoint_writer.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/plan/motion_planner.hpp>
-#include <kontur/span_polynomial.hpp>
+#include <kontur/plan/program_moves.hpp>
 #include <kontur/verify/checker.hpp>
 
 #include <fmt/format.h>
@@ -29,22 +29,6 @@ struct RunOptions {
   std::string summary;
 };
 
-// The block's curve as a shared curve for the planner (NURBS as span polynomials: faster).
-std::shared_ptr<const Curve> shared_curve(const gcode::Block& b) {
-  return std::visit(
-      [](const auto& g) -> std::shared_ptr<const Curve> {
-        using G = std::decay_t<decltype(g)>;
-        if constexpr (std::is_same_v<G, std::monostate>) {
-          return nullptr;
-        } else if constexpr (std::is_same_v<G, NurbsCurve>) {
-          return std::make_shared<SpanPolynomialCurve>(g);
-        } else {
-          return std::make_shared<G>(g);
-        }
-      },
-      b.geometry);
-}
-
 bool run_program(const RunOptions& o) {
   const Machine machine = o.machine.empty() ? default_machine() : read_machine(o.machine);
   if (o.machine.empty()) validate(machine);
@@ -63,23 +47,14 @@ bool run_program(const RunOptions& o) {
       }
     };
     gcode::for_each_block(o.program, [&](const gcode::Block& b) {
-      auto curve = shared_curve(b);
+      const plan::MoveInput move = plan::move_input(b, machine);
+      const auto& curve = move.curve;
       if (!curve) {  // a dwell: the motion stops and stays
         if (b.type == gcode::BlockType::dwell) planner.dwell(b.dwell_s, b.location.line);
         drain();
         return;
       }
-      double feed = b.type == gcode::BlockType::rapid ? machine.rapid_feed_mm_s : b.feed.value / 60.0;
-      if (b.feed.mode == gcode::FeedMode::inverse_time && b.type != gcode::BlockType::rapid) {
-        const auto len = b.length_mm();
-        feed = len && b.feed.duration_s() > 0.0 ? *len / b.feed.duration_s() : machine.max_feed_mm_s;
-      }
-      if (!(feed > 0.0))
-        throw InputError("feed-missing",
-                         fmt::format("{}:{}: a feed move with no feed: program an F word before it", *b.location.file,
-                                     b.location.line));
-      const bool exact = b.modal.path_control != gcode::PathControl::blend;
-      planner.push({curve, feed, exact, b.location.line});
+      planner.push(move);
       curves.push_back(curve);
       moves.push_back({curve.get(), b.location.line});
       drain();

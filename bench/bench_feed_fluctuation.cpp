@@ -1,0 +1,119 @@
+// Feed fluctuation of the interpolators (methods.md section 3): each curve is stepped from start
+// to end at a constant programmed feed F (6000 mm/min) and servo period T (1 ms and 125 us), and
+// the arc length of every cycle is measured (adaptive Gauss-Kronrod, independent of the
+// interpolators) against F T: max_rel = max |v - F| / F, mean_rel its mean over the cycles, with
+// the largest bow height of a cycle's chord [um]. Curves: the seed examples
+// (examples/curves/seed_example*.json), the NURBS blocks of the LinuxCNC NURBS programs
+// (../shared/data/gcode/linuxcnc-nurbs, skipped when absent; one row per program and one for all
+// of them) and the ellipse, parabola and hyperbola of methods.md section 5.
+// The time column is the measurement's cost, not the interpolator's (see bench_interpolation).
+#include <benchmark/benchmark.h>
+#include <kontur/conic_through_points.hpp>
+#include <kontur/error.hpp>
+#include <kontur/interpolation.hpp>
+#include <kontur/io/curve_json.hpp>
+#include <kontur/span_polynomial.hpp>
+
+#include "support_programs.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace kontur;
+
+constexpr double kFeedMmS = 6000.0 / 60.0;  // programmed feed [mm/s]
+constexpr std::array<double, 2> kPeriodsS{1e-3, 125e-6};  // servo periods [s]
+constexpr std::array<Interpolator, 3> kKinds{Interpolator::taylor_first_order, Interpolator::taylor_second_order,
+                                              Interpolator::arc_length_exact};
+
+// A named set of curves (kept alive for the whole run).
+struct CurveSet {
+  std::string name;
+  std::vector<std::shared_ptr<const Curve>> curves;
+};
+
+std::shared_ptr<const Curve> spans_of(const NurbsCurve& c) { return std::make_shared<SpanPolynomialCurve>(c); }
+
+std::vector<CurveSet> curve_sets() {
+  std::vector<CurveSet> sets;
+  for (int i = 1; i <= 2; ++i) {
+    const auto path = std::string(KONTUR_SOURCE_DIR) + "/examples/curves/seed_example" + std::to_string(i) + ".json";
+    sets.push_back({"seed_example" + std::to_string(i), {spans_of(read_curve_json(path))}});
+  }
+  // methods.md section 5: (x, y) -> (100 + x, 200 + 0.6 y, 300 + 0.8 y).
+  const std::array<std::pair<const char*, std::array<Vec3, 5>>, 3> conics{{
+      {"ellipse", {Vec3(105, 200, 300), Vec3(104, 201.08, 301.44), Vec3(103, 201.44, 301.92), Vec3(100, 201.8, 302.4),
+                   Vec3(96, 201.08, 301.44)}},
+      {"parabola", {Vec3(96, 202.4, 303.2), Vec3(98, 200.6, 300.8), Vec3(100, 200, 300), Vec3(102, 200.6, 300.8),
+                    Vec3(106, 205.4, 307.2)}},
+      {"hyperbola", {Vec3(108.5, 196.625, 295.5), Vec3(105, 198.65, 298.2), Vec3(104, 200, 300),
+                     Vec3(105, 201.35, 301.8), Vec3(108.5, 203.375, 304.5)}},
+  }};
+  for (const auto& [name, pts] : conics)
+    sets.push_back({name, {std::make_shared<ConicArc>(conic_through_points(pts).curve())}});
+
+  const auto programs = bench::ngc_files(bench::shared_path("data/gcode/linuxcnc-nurbs"));
+  if (programs.empty()) std::fprintf(stderr, "note: ../shared/data/gcode/linuxcnc-nurbs absent: its rows are skipped\n");
+  CurveSet all{"linuxcnc_nurbs_all", {}};
+  for (const auto& p : programs) {
+    CurveSet s{p.stem().string(), {}};
+    try {
+      for (auto& c : bench::program_nurbs(p)) s.curves.push_back(std::shared_ptr<const Curve>(std::move(c.spans)));
+    } catch (const InputError& e) {  // a program Kontur does not read: reported, left out
+      std::fprintf(stderr, "note: %s left out: %s\n", p.filename().string().c_str(), e.what());
+      continue;
+    }
+    if (s.curves.empty()) continue;
+    all.curves.insert(all.curves.end(), s.curves.begin(), s.curves.end());
+    sets.push_back(std::move(s));
+  }
+  if (!all.curves.empty()) sets.push_back(std::move(all));
+  return sets;
+}
+
+void BM_FeedFluctuation(benchmark::State& state, const CurveSet* set, Interpolator kind, double period_s) {
+  long cycles = 0;
+  double max_rel = 0.0, sum_rel = 0.0, max_chord_mm = 0.0;
+  for (auto _ : state) {
+    cycles = 0;
+    max_rel = sum_rel = max_chord_mm = 0.0;
+    for (const auto& c : set->curves) {
+      const FeedFluctuation f = measure_feed_fluctuation(*c, kind, kFeedMmS, period_s);
+      cycles += f.cycles;
+      max_rel = std::max(max_rel, f.max_relative);
+      sum_rel += f.mean_relative * static_cast<double>(f.cycles);
+      max_chord_mm = std::max(max_chord_mm, f.max_chord_error_mm);
+    }
+  }
+  state.counters["curves"] = static_cast<double>(set->curves.size());
+  state.counters["cycles"] = static_cast<double>(cycles);
+  state.counters["max_rel"] = max_rel;
+  state.counters["mean_rel"] = cycles > 0 ? sum_rel / static_cast<double>(cycles) : 0.0;
+  state.counters["max_chord_um"] = max_chord_mm * 1e3;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  static const std::vector<CurveSet> sets = curve_sets();
+  for (const double period : kPeriodsS)
+    for (const auto& s : sets)
+      for (const Interpolator kind : kKinds) {
+        const std::string name = "BM_FeedFluctuation/" + s.name + "/" + to_string(kind) +
+                                 "/T_us:" + std::to_string(static_cast<int>(period * 1e6 + 0.5));
+        benchmark::RegisterBenchmark(name.c_str(), BM_FeedFluctuation, &s, kind, period)
+            ->Iterations(1)
+            ->Unit(benchmark::kMillisecond);
+      }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,149 @@
+#pragma once
+// Helpers of the benchmarks on real part programs (../shared/data/gcode, optional: callers skip
+// when it is absent) and of per-call timing (worst case, high percentiles, the clock's own cost).
+#include <kontur/gcode/reader.hpp>
+#include <kontur/machine.hpp>
+#include <kontur/nurbs.hpp>
+#include <kontur/plan/motion_planner.hpp>
+#include <kontur/plan/program_moves.hpp>
+#include <kontur/span_polynomial.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <time.h>  // clock_gettime (POSIX)
+
+namespace kontur::bench {
+
+namespace fs = std::filesystem;
+
+/// Path of `relative` under the shared data folder (../shared next to the source tree).
+inline fs::path shared_path(const std::string& relative) { return fs::path(KONTUR_SHARED_DIR) / relative; }
+
+/// The .ngc files of a folder, sorted by name; empty if the folder does not exist.
+inline std::vector<fs::path> ngc_files(const fs::path& dir) {
+  std::vector<fs::path> out;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return out;
+  for (const auto& e : fs::directory_iterator(dir, ec))
+    if (e.is_regular_file() && e.path().extension() == ".ngc") out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+/// A NURBS of a program and its span polynomials (what the planner evaluates).
+struct ProgramCurve {
+  std::unique_ptr<NurbsCurve> nurbs;
+  std::unique_ptr<SpanPolynomialCurve> spans;
+};
+
+/// The curves of the NURBS blocks (G6.2, G5.2/G5.3) of a program, read with the G-code reader.
+inline std::vector<ProgramCurve> program_nurbs(const fs::path& program) {
+  std::vector<ProgramCurve> out;
+  gcode::for_each_block(program.string(), [&](const gcode::Block& b) {
+    if (b.type != gcode::BlockType::nurbs) return;
+    ProgramCurve c;
+    c.nurbs = std::make_unique<NurbsCurve>(std::get<NurbsCurve>(b.geometry));
+    c.spans = std::make_unique<SpanPolynomialCurve>(*c.nurbs);
+    out.push_back(std::move(c));
+  });
+  return out;
+}
+
+/// The planner moves of a whole program on `machine`, as `kontur run` makes them (dwells left out).
+inline std::vector<plan::MoveInput> program_moves(const fs::path& program, const Machine& machine) {
+  std::vector<plan::MoveInput> out;
+  gcode::for_each_block(program.string(), [&](const gcode::Block& b) {
+    auto m = plan::move_input(b, machine);
+    if (m.curve) out.push_back(std::move(m));
+  });
+  return out;
+}
+
+using Clock = std::chrono::steady_clock;
+
+inline double ns_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::nano>(b - a).count();
+}
+
+/// CPU time of the calling thread [ns]: unlike steady_clock it does not count the time the
+/// thread waits while other processes run (the build machine is shared).
+inline double thread_cpu_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e9 + static_cast<double>(ts.tv_nsec);
+}
+
+/// Distribution of single-call times [ns] (each includes one clock read's cost).
+struct CallTimes {
+  double mean_ns = 0.0;
+  double p50_ns = 0.0;
+  double p999_ns = 0.0;  ///< 99.9th percentile
+  double max_ns = 0.0;
+};
+
+/// Sorts `ns` (the times of single calls) and returns its statistics.
+inline CallTimes call_times(std::vector<double>& ns) {
+  CallTimes t;
+  if (ns.empty()) return t;
+  std::sort(ns.begin(), ns.end());
+  double sum = 0.0;
+  for (const double x : ns) sum += x;
+  const auto at = [&](double q) {
+    return ns[std::min(ns.size() - 1, static_cast<std::size_t>(q * static_cast<double>(ns.size())))];
+  };
+  t.mean_ns = sum / static_cast<double>(ns.size());
+  t.p50_ns = at(0.5);
+  t.p999_ns = at(0.999);
+  t.max_ns = ns.back();
+  return t;
+}
+
+/// Single-call times of a deterministic sequence of calls, repeated: `one_run(out)` appends the time
+/// [ns] of each call of one run. Preemption by other processes hits a call in one run, rarely the
+/// same call in every run; the slowest call of the algorithm is slow in every run. So the
+/// statistics are taken over each call's minimum across `runs` runs (`raw_max_ns`: the largest
+/// time seen at all, preemption included).
+struct RepeatedCallTimes {
+  CallTimes min_of_runs;
+  double raw_max_ns = 0.0;
+};
+template <class OneRun>
+RepeatedCallTimes repeated_call_times(int runs, OneRun&& one_run) {
+  RepeatedCallTimes r;
+  std::vector<double> best, ns;
+  for (int k = 0; k < runs; ++k) {
+    ns.clear();
+    one_run(ns);
+    for (const double x : ns) r.raw_max_ns = std::max(r.raw_max_ns, x);
+    if (k == 0) {
+      best = ns;
+    } else {
+      for (std::size_t i = 0; i < std::min(best.size(), ns.size()); ++i) best[i] = std::min(best[i], ns[i]);
+    }
+  }
+  r.min_of_runs = call_times(best);
+  return r;
+}
+
+/// Cost of timing an empty call in this process: two steady_clock reads back to back [ns],
+/// 10^5 times. The single-call figures include about its p50.
+inline CallTimes clock_overhead() {
+  static const CallTimes t = [] {
+    std::vector<double> ns(100000);
+    for (auto& x : ns) {
+      const auto a = Clock::now();
+      const auto b = Clock::now();
+      x = ns_between(a, b);
+    }
+    return call_times(ns);
+  }();
+  return t;
+}
+
+}  // namespace kontur::bench

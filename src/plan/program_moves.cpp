@@ -1,0 +1,51 @@
+#include <kontur/error.hpp>
+#include <kontur/plan/program_moves.hpp>
+#include <kontur/span_polynomial.hpp>
+
+#include <fmt/format.h>
+
+#include <memory>
+#include <type_traits>
+#include <variant>
+
+namespace kontur::plan {
+namespace {
+
+// The block's curve as a shared curve for the planner (NURBS as span polynomials: faster).
+std::shared_ptr<const Curve> shared_curve(const gcode::Block& b) {
+  return std::visit(
+      [](const auto& g) -> std::shared_ptr<const Curve> {
+        using G = std::decay_t<decltype(g)>;
+        if constexpr (std::is_same_v<G, std::monostate>) {
+          return nullptr;
+        } else if constexpr (std::is_same_v<G, NurbsCurve>) {
+          return std::make_shared<SpanPolynomialCurve>(g);
+        } else {
+          return std::make_shared<G>(g);
+        }
+      },
+      b.geometry);
+}
+
+}  // namespace
+
+MoveInput move_input(const gcode::Block& b, const Machine& machine) {
+  MoveInput m;
+  m.curve = shared_curve(b);
+  m.source_line = b.location.line;
+  if (!m.curve) return m;  // dwell
+  double feed = b.type == gcode::BlockType::rapid ? machine.rapid_feed_mm_s : b.feed.value / 60.0;  // [mm/s]
+  if (b.feed.mode == gcode::FeedMode::inverse_time && b.type != gcode::BlockType::rapid) {
+    const auto len = b.length_mm();
+    feed = len && b.feed.duration_s() > 0.0 ? *len / b.feed.duration_s() : machine.max_feed_mm_s;
+  }
+  if (!(feed > 0.0))
+    throw InputError("feed-missing", fmt::format("{}:{}: a feed move with no feed: program an F word before it",
+                                                 b.location.file ? *b.location.file : std::string("?"),
+                                                 b.location.line));
+  m.feed_mm_s = feed;
+  m.exact_stop = b.modal.path_control != gcode::PathControl::blend;
+  return m;
+}
+
+}  // namespace kontur::plan
