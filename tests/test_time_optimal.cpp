@@ -246,6 +246,51 @@ TEST(TimeOptimal, HalvingTheGridChangesTheTimeByLessThanTheStatedError) {
   EXPECT_LT(std::abs(t3 - t2), 0.75 * std::abs(t2 - t1) + 1e-12);
 }
 
+// A near-cusp: C(u) = (u^3 + e u, u^2, 0), u in [-2, 1.7] (asymmetric: no grid point at u = 0 by
+// symmetry); at u = 0 the tangent is X, the normal Y and the radius |C'|^3 / |C' x C''| =
+// e^3 / (2 e) = e^2 / 2 (5 um for e = 0.1).
+class NearCusp final : public Curve {
+public:
+  explicit NearCusp(double e) : e_(e) {}
+  [[nodiscard]] double u_min() const noexcept override { return -2.0; }
+  [[nodiscard]] double u_max() const noexcept override { return 1.7; }
+  [[nodiscard]] Derivatives derivatives(double u, int order) const noexcept override {
+    Derivatives d;
+    d[0] = Vec3(u * u * u + e_ * u, u * u, 0.0);
+    if (order >= 1) d[1] = Vec3(3 * u * u + e_, 2 * u, 0.0);
+    if (order >= 2) d[2] = Vec3(6 * u, 2.0, 0.0);
+    if (order >= 3) d[3] = Vec3(6.0, 0.0, 0.0);
+    return d;
+  }
+  [[nodiscard]] std::vector<double> breakpoints() const override { return {-2.0, 1.7}; }
+
+private:
+  double e_;
+};
+
+TEST(TimeOptimal, RefinementFindsTheSlowSpotOfANearCusp) {
+  // Radius e^2 / 2 = 5 um at u = 0, 0.01 mm of path where the tangent turns by nearly pi: a
+  // uniform grid of 0.05 mm steps over it. There |k_y| v^2 <= A_y alone bounds the speed:
+  // sqrt(A R) = 3.16 mm/s (the chord limit is 6 mm/s).
+  const Machine m = machine(200.0, 2000.0);
+  const double e = 0.1, R = e * e / 2.0;
+  Path p;
+  p.add(std::make_shared<NearCusp>(e), 100.0);
+  const TimeOptimalProfile r = time_optimal_profile(p.moves, m);
+  double slowest = 1e300;
+  for (std::size_t k = 1; k + 1 < r.mvc_mm_s.size(); ++k) slowest = std::min(slowest, r.mvc_mm_s[k]);
+  EXPECT_NEAR(slowest, std::sqrt(2000.0 * R), 0.02 * std::sqrt(2000.0 * R));
+  expect_constraints_hold(p, r, m);
+  // Without the refinement the grid misses it (and the time is too short).
+  TimeOptimalOptions coarse;
+  coarse.max_turn_rad = 10.0;
+  const TimeOptimalProfile blind = time_optimal_profile(p.moves, m, coarse);
+  double blind_slowest = 1e300;
+  for (std::size_t k = 1; k + 1 < blind.mvc_mm_s.size(); ++k) blind_slowest = std::min(blind_slowest, blind.mvc_mm_s[k]);
+  EXPECT_GT(blind_slowest, 3.0 * slowest);
+  EXPECT_LT(blind.total_time_s, r.total_time_s);
+}
+
 // The online planner on an acceleration-limited machine (jerk large) is never faster.
 double online_time(const Path& p, const Machine& m) {
   MotionPlanner planner(m);
