@@ -328,6 +328,17 @@ TEST(TimeOptimal, OnlinePlannerIsNeverFaster) {
   EXPECT_GE(online, reference) << "online " << online << " reference " << reference;
 }
 
+TEST(TimeOptimal, LargestGridCoarsensTheStep) {
+  const Machine m = machine(200.0, 2000.0);
+  Path p;
+  p.line({0, 0, 0}, {1000, 0, 0}, 150.0);
+  TimeOptimalOptions o;
+  o.max_points = 1000;
+  const TimeOptimalProfile r = time_optimal_profile(p.moves, m, o);
+  EXPECT_LE(r.s_mm.size(), 1001u);
+  EXPECT_NEAR(r.total_time_s, rest_to_rest_time(1000.0, 150.0, 2000.0), 1e-9 * r.total_time_s);
+}
+
 TEST(TimeOptimal, RefusesBadInput) {
   const Machine m = machine(200.0, 2000.0);
   Path p;

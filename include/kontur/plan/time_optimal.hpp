@@ -42,7 +42,9 @@ struct TimeOptimalOptions {
   /// tolerances::time_optimal_min_step_mm.
   double max_turn_rad = 0.02;
   CornerRule corners = CornerRule::stop;  ///< speed at tangent discontinuities
-  std::size_t max_points = 20'000'000;    ///< largest grid (the step grows to stay within it)
+  /// Largest uniform grid (the step grows to stay within it; about 150 bytes per point). The
+  /// refinement at sharp turns comes on top.
+  std::size_t max_points = 2'000'000;
 };
 
 /// The time-optimal profile on its grid. Grid point k is at arc length s_mm[k] from the path's
