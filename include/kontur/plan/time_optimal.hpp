@@ -42,7 +42,7 @@ struct TimeOptimalOptions {
   /// tolerances::time_optimal_min_step_mm.
   double max_turn_rad = 0.02;
   CornerRule corners = CornerRule::stop;  ///< speed at tangent discontinuities
-  /// Largest uniform grid (the step grows to stay within it; about 150 bytes per point). The
+  /// Largest uniform grid (the step grows to stay within it; about 170 bytes per point). The
   /// refinement at sharp turns comes on top.
   std::size_t max_points = 2'000'000;
 };
