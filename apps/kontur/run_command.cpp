@@ -2,6 +2,7 @@
 // an error yields no setpoint) are planned on the machine and sampled at its servo period; the
 // setpoints go to a CSV or binary file (or stdout), and a JSON summary checks them independently.
 #include "commands.hpp"
+#include "time_optimal_summary.hpp"
 
 #include <kontur/error.hpp>
 #include <kontur/gcode/reader.hpp>
@@ -27,6 +28,7 @@ struct RunOptions {
   std::string output = "-";
   std::string format = "csv";
   std::string summary;
+  bool time_optimal = false;
 };
 
 bool run_program(const RunOptions& o) {
@@ -37,6 +39,7 @@ bool run_program(const RunOptions& o) {
   std::vector<std::shared_ptr<const Curve>> curves;  // kept for the check
   std::vector<verify::PathMove> moves;
   std::vector<verify::Sample> samples;
+  std::vector<plan::TimeOptimalMove> reference_moves;  // for --time-optimal
   auto produce = [&](std::ostream& out) {
     SetpointWriter writer(out, format, machine.servo_period_s);
     plan::Setpoint sp;
@@ -57,6 +60,7 @@ bool run_program(const RunOptions& o) {
       planner.push(move);
       curves.push_back(curve);
       moves.push_back({curve.get(), b.location.line});
+      reference_moves.push_back({curve.get(), feed, exact});
       drain();
     });
     planner.finish();
@@ -75,6 +79,7 @@ bool run_program(const RunOptions& o) {
   j["setpoints"] = r.samples;
   j["total_time_s"] = samples.empty() ? 0.0 : samples.back().t_s;
   j["moves"] = moves.size();
+  if (o.time_optimal) add_time_optimal_summary(j, reference_moves, machine, j["total_time_s"].get<double>());
   j["max_velocity_ratio"] = r.max_velocity_ratio;
   j["max_acceleration_ratio"] = r.max_acceleration_ratio;
   j["max_jerk_ratio"] = r.max_jerk_ratio;
@@ -106,6 +111,8 @@ void register_run_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"csv", "binary"}))
       ->capture_default_str();
   cmd->add_option("--summary", o->summary, "JSON summary file (default: stderr)");
+  cmd->add_flag("--time-optimal", o->time_optimal,
+                "add the time-optimal reference (acceleration-limited) and the ratio of the total time to it");
   cmd->footer("Example:\n  kontur run examples/programs/square.ngc -o square.csv --summary square.json\n"
               "Exit codes: 0 setpoints written and within the limits, 1 invalid program or machine, 2 wrong command "
               "line, 4 setpoints written but the check found a limit exceeded (see the summary).");

@@ -39,6 +39,23 @@ inline constexpr int inverse_length_max_iterations = 60;
 inline constexpr double forward_difference_drift_relative = 1e-9;
 
 
+// ---- time-optimal reference (plan/time_optimal.hpp)
+/// Two unit tangents that differ by more than this (Euclidean norm) make a corner: a tangent
+/// discontinuity that an acceleration-limited motion can only pass at rest (or, by the servo-period
+/// rule, within one period's velocity jump). The online planner's junction rule uses the same 1e-9.
+inline constexpr double time_optimal_corner_tangent = 1e-9;
+/// A tangent component below this counts as zero in the axis constraints |t_i u + k_i x| <= A_i
+/// (the constraint is then |k_i| x <= A_i; the neglected term t_i u is below 1e-12 A).
+inline constexpr double time_optimal_tangent_zero = 1e-12;
+/// Shortest grid interval the reference's refinement at sharp turns makes [mm] (1 nm), and the
+/// deepest bisection of one interval: a near-cusp of a spline (radius 0.2 um in
+/// G6_Curva_Delfino) is resolved to this.
+inline constexpr double time_optimal_min_step_mm = 1e-6;
+inline constexpr int time_optimal_max_refinement = 40;
+/// Relative change of the total time of the reference between a grid and the grid of half its
+/// step that the tests and the documentation guarantee (the discretisation error).
+inline constexpr double time_optimal_grid_relative = 1e-4;
+
 // ---- G-code programs (kontur/gcode); all in [mm] after unit conversion (1 in = 25.4 mm)
 /// Arc radius check of a control: the distances from the centre to the start and to the end of a
 /// G2/G3 arc (or |R| and the I J K radius when both are given) may differ by at most

@@ -137,5 +137,7 @@ endif()
 
 # kontur run (issue 5, in progress): the bundled example passes the independent check.
 kontur_cli_case(run_example 0 "\"passed\": true" run examples/programs/square_arc.ngc -o -)
+# --time-optimal: the reference time and the ratio (>= 1: the reference is a lower bound).
+kontur_cli_case(run_time_optimal 0 "\"time_optimal_s\": [0-9.]+,[^}]*\"time_ratio\": 1\\.[0-9]+" run examples/programs/square_arc.ngc --time-optimal -o /tmp/kontur_cli_run_time_optimal.csv)
 kontur_cli_case(run_bad_program 1 "knot_count\\.ngc:[0-9]+:[0-9]+: G0?6\\.2: [0-9]+ knots given" run tests/data/gcode/bad/knot_count.ngc -o /tmp/kontur_cli_run_bad.csv)
 kontur_cli_case(run_refuses_to_overwrite_its_program 1 "square_arc\\.ngc" run examples/programs/square_arc.ngc -o examples/programs/square_arc.ngc)
