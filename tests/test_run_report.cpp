@@ -2,15 +2,15 @@
 // and the checker's per-block statistics and per-setpoint measures agree with a brute-force
 // recomputation from the setpoints and the path.
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
 #include <kontur/error.hpp>
 #include <kontur/helix_arc.hpp>
 #include <kontur/line_segment.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/report/html_report.hpp>
 #include <kontur/verify/checker.hpp>
-
-#include <algorithm>
-#include <cmath>
 #include <numbers>
 #include <random>
 
@@ -23,7 +23,8 @@ TEST(StreamDecimator, KeepsTheGlobalExtremaOfEveryChannelExactly) {
   std::uniform_int_distribution<int> sizes(1, 300000);
   for (int trial = 0; trial < 20; ++trial) {
     const std::size_t n = trial < 3 ? static_cast<std::size_t>(trial + 1) : static_cast<std::size_t>(sizes(rng));
-    const std::size_t channels = 1 + static_cast<std::size_t>(trial % 4), buckets = 50 + 37 * static_cast<std::size_t>(trial);
+    const std::size_t channels = 1 + static_cast<std::size_t>(trial % 4),
+                      buckets = 50 + 37 * static_cast<std::size_t>(trial);
     report::StreamDecimator d(channels, buckets);
     std::vector<std::vector<double>> all(channels);
     std::vector<double> values(channels);
@@ -215,10 +216,10 @@ TEST(Checker, PerBlockStatisticsMatchABruteForceRecomputation) {
       EXPECT_LE((x.velocity - (s[k].position - s[k - 1].position) / T).norm(), 1e-9);
     }
     if (k >= 3) {
-      EXPECT_LE((x.jerk - (s[k].position - 3 * s[k - 1].position + 3 * s[k - 2].position - s[k - 3].position) /
-                              (T * T * T))
-                    .norm(),
-                1e-9 * std::max(1.0, x.jerk.norm()));
+      EXPECT_LE(
+          (x.jerk - (s[k].position - 3 * s[k - 1].position + 3 * s[k - 2].position - s[k - 3].position) / (T * T * T))
+              .norm(),
+          1e-9 * std::max(1.0, x.jerk.norm()));
     }
     chord_max = std::max(chord_max, x.chord_error_mm);
   }

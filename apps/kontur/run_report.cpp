@@ -1,12 +1,12 @@
 #include "run_report.hpp"
 
-#include "arc_output.hpp"
-#include "report_output.hpp"
-
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <map>
+
+#include "arc_output.hpp"
+#include "report_output.hpp"
 
 namespace kontur::app {
 namespace {
@@ -120,8 +120,8 @@ report::Report RunReportBuilder::build(const verify::Report& r, const std::vecto
   sum.push_back({"max axis acceleration / limit", ratio(r.max_acceleration_ratio) + axis(r.worst_acceleration_axis)});
   sum.push_back({"max axis jerk / limit", ratio(r.max_jerk_ratio) + axis(r.worst_jerk_axis)});
   sum.push_back({"max path error (limit 1e-6 mm)", fmt::format("{} mm", sci(r.max_path_error_mm))});
-  sum.push_back({"max chord error", fmt::format("{} mm (tolerance {} mm)", sci(r.max_chord_error_mm),
-                                                num(machine_.chord_tolerance_mm))});
+  sum.push_back({"max chord error",
+                 fmt::format("{} mm (tolerance {} mm)", sci(r.max_chord_error_mm), num(machine_.chord_tolerance_mm))});
   sum.push_back({"start / end error", fmt::format("{} / {} mm", sci(r.start_error_mm), sci(r.end_error_mm))});
 
   // The path coloured by path speed, and the start of every block.
@@ -157,10 +157,15 @@ report::Report RunReportBuilder::build(const verify::Report& r, const std::vecto
     p.x_label = "t [s]";
     p.y_label = "v [mm/s]";
     report::Series v{"path speed |p_k - p_k-1| / T", k.x, channel(k, 2, 0), "#1f77b4", false, speed_.count()};
-    report::Series f{"commanded feed, at most the machine's max feed (rapid feed on rapids)", k.x, channel(k, 2, 1), "#7f7f7f", false, speed_.count()};
+    report::Series f{"commanded feed, at most the machine's max feed (rapid feed on rapids)",
+                     k.x,
+                     channel(k, 2, 1),
+                     "#7f7f7f",
+                     false,
+                     speed_.count()};
     p.series = {std::move(v), std::move(f)};
-    p.limits.push_back({fmt::format("machine max feed {} mm/s", num(machine_.max_feed_mm_s)), machine_.max_feed_mm_s,
-                        "#d62728"});
+    p.limits.push_back(
+        {fmt::format("machine max feed {} mm/s", num(machine_.max_feed_mm_s)), machine_.max_feed_mm_s, "#d62728"});
     rep.plots.push_back(std::move(p));
   }
   rep.plots.push_back(axis_plot(velocity_, "Axis velocity over time (backward differences)", "v [mm/s]",
@@ -175,10 +180,14 @@ report::Report RunReportBuilder::build(const verify::Report& r, const std::vecto
     p.title = "Chord error and path error over time";
     p.x_label = "t [s]";
     p.y_label = "error [mm]";
-    report::Series c{"chord error (bow of the path from each period's chord)", k.x, channel(k, 2, 0), "#9467bd",
-                     false, error_.count()};
-    report::Series e{"path error (distance of the setpoint from the path)", k.x, channel(k, 2, 1), "#8c564b", false,
+    report::Series c{"chord error (bow of the path from each period's chord)",
+                     k.x,
+                     channel(k, 2, 0),
+                     "#9467bd",
+                     false,
                      error_.count()};
+    report::Series e{
+        "path error (distance of the setpoint from the path)", k.x, channel(k, 2, 1), "#8c564b", false, error_.count()};
     p.series = {std::move(c), std::move(e)};
     p.limits.push_back({fmt::format("chord tolerance {} mm", num(machine_.chord_tolerance_mm)),
                         machine_.chord_tolerance_mm, "#d62728"});
@@ -188,9 +197,20 @@ report::Report RunReportBuilder::build(const verify::Report& r, const std::vecto
   {
     report::Table t;
     t.title = "Blocks (click a row: its time span on the plots, its start in the views)";
-    t.columns = {"#",          "line",       "type",        "length [mm]",  "feed [mm/s]",    "t start [s]",
-                 "time [s]",   "setpoints",  "max speed [mm/s]", "max v/limit", "max a/limit", "max j/limit",
-                 "max path error [mm]", "max chord error [mm]"};
+    t.columns = {"#",
+                 "line",
+                 "type",
+                 "length [mm]",
+                 "feed [mm/s]",
+                 "t start [s]",
+                 "time [s]",
+                 "setpoints",
+                 "max speed [mm/s]",
+                 "max v/limit",
+                 "max a/limit",
+                 "max j/limit",
+                 "max path error [mm]",
+                 "max chord error [mm]"};
     double t_prev = 0.0;
     for (std::size_t i = 0; i < r.blocks.size() && i < moves_.size(); ++i) {
       const auto& b = r.blocks[i];

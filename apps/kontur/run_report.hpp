@@ -5,7 +5,6 @@
 #include <kontur/machine.hpp>
 #include <kontur/report/html_report.hpp>
 #include <kontur/verify/checker.hpp>
-
 #include <string>
 #include <vector>
 
@@ -14,9 +13,9 @@ namespace kontur::app {
 /// What the report shows of a programmed move besides the checker's statistics.
 struct RunMove {
   long source_line = 0;
-  std::string type;              ///< "line", "arc", "rapid", ...
-  double length_mm = 0.0;        ///< [mm]
-  double feed_mm_s = 0.0;        ///< the commanded feed [mm/s] (rapids: the machine's rapid feed)
+  std::string type;        ///< "line", "arc", "rapid", ...
+  double length_mm = 0.0;  ///< [mm]
+  double feed_mm_s = 0.0;  ///< the commanded feed [mm/s] (rapids: the machine's rapid feed)
 };
 
 class RunReportBuilder {
@@ -33,12 +32,12 @@ class RunReportBuilder {
   std::vector<RunMove> moves_;
   std::vector<double> max_speed_mm_s_;  // per move
   double max_speed_all_ = 0.0, path_length_mm_ = 0.0;
-  report::StreamDecimator path_;        // x, y, z [mm], speed [mm/s]
-  report::StreamDecimator speed_;       // speed, commanded feed [mm/s]
-  report::StreamDecimator velocity_;    // per axis [mm/s]
+  report::StreamDecimator path_;      // x, y, z [mm], speed [mm/s]
+  report::StreamDecimator speed_;     // speed, commanded feed [mm/s]
+  report::StreamDecimator velocity_;  // per axis [mm/s]
   report::StreamDecimator acceleration_;
   report::StreamDecimator jerk_;
-  report::StreamDecimator error_;       // chord error, path error [mm]
+  report::StreamDecimator error_;  // chord error, path error [mm]
 };
 
 }  // namespace kontur::app
