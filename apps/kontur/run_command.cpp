@@ -224,7 +224,7 @@ bool run_program(const RunOptions& o) {
     const report::Report rep = builder->build(r, samples, o.program);
     std::vector<std::filesystem::path> report_inputs = inputs;
     if (o.output != "-") report_inputs.emplace_back(o.output);
-    report::write_html_report(rep, o.report, report_inputs);
+    report::write_html_report(rep, o.report, report_inputs, RunReportBuilder::render_options());
   }
   const std::string text = j.dump(2) + "\n";
   if (o.summary.empty()) {

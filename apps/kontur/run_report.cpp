@@ -12,9 +12,9 @@ namespace kontur::app {
 namespace {
 
 // Buckets of the streaming decimation: at most 2 * buckets * (2 + 2 channels) points per series,
-// e.g. 6000 for the three axes of a plot (the writer's 2-D budget is 4000 per series, with the
-// same min/max rule).
-constexpr std::size_t kBuckets = 300;
+// e.g. 16000 for the three axes of a plot; the writer then keeps at most about
+// RunReportBuilder::render_options().max_points_2d per series, with the same min/max rule.
+constexpr std::size_t kBuckets = 1000;
 constexpr std::size_t kMaxLabelledBlocks = 200;  // more block starts are drawn without labels
 
 const char* axis_colors[3] = {"#d62728", "#2ca02c", "#1f77b4"};
@@ -79,6 +79,12 @@ RunReportBuilder::RunReportBuilder(const Machine& machine, std::vector<RunMove> 
       jerk_(3, kBuckets),
       error_(2, kBuckets) {
   for (const RunMove& m : moves_) path_length_mm_ += m.length_mm;
+}
+
+report::RenderOptions RunReportBuilder::render_options() {
+  report::RenderOptions o;
+  o.max_points_2d = 12000;  // a run's time plots: 12000 points per series (the default is 4000)
+  return o;
 }
 
 void RunReportBuilder::observe(const verify::SampleMeasure& s) {

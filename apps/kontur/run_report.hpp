@@ -21,6 +21,8 @@ struct RunMove {
 class RunReportBuilder {
  public:
   RunReportBuilder(const Machine& machine, std::vector<RunMove> moves);
+  /// The writer's display budgets for a run's report.
+  [[nodiscard]] static report::RenderOptions render_options();
   /// Feeds one setpoint's measures (in order).
   void observe(const verify::SampleMeasure& s);
   /// The report, once every setpoint was observed. `samples` gives the block starts.
