@@ -59,7 +59,7 @@ Report sample_report(std::size_t n) {
   r.summary = {{"length", "1 mm"}, {"time", "2 s"}};
   Polyline path;
   path.name = "path";
-  Series speed{"speed", {}, {}, "", false};
+  Series speed{"speed", {}, {}, "", false, 0};
   for (std::size_t i = 0; i < n; ++i) {
     const double t = static_cast<double>(i) / static_cast<double>(n);
     path.points_mm.push_back(Vec3(std::cos(6.0 * t), std::sin(6.0 * t), t));
@@ -81,7 +81,7 @@ Report sample_report(std::size_t n) {
   t.columns = {"i", "t"};
   for (std::size_t i = 0; i < 10; ++i) {
     t.rows.push_back({std::to_string(i), std::to_string(static_cast<double>(i) * 0.5)});
-    t.links.push_back({static_cast<double>(i) * 0.5, Vec3(1, 2, 3)});
+    t.links.push_back({static_cast<double>(i) * 0.5, Vec3(1, 2, 3), std::nullopt});
   }
   r.tables.push_back(t);
   return r;
@@ -239,13 +239,13 @@ TEST(HtmlReport, LazyTablesMakeOnlyTheRowsShown) {
     ++made;
     return std::vector<std::string>{"lazy" + std::to_string(i), "x"};
   };
-  t.make_link = [](std::size_t i) { return RowLink{static_cast<double>(i), Vec3(0, 0, 0)}; };
+  t.make_link = [](std::size_t i) { return RowLink{static_cast<double>(i), Vec3(0, 0, 0), std::nullopt}; };
   const std::string data = data_of(render_html(r));
   EXPECT_EQ(made, 10u);
   EXPECT_NE(data.find("\"lazy999999\""), std::string::npos);
   EXPECT_NE(data.find("\"omitted\":999990"), std::string::npos);
   // A lazily made link is checked too.
-  t.make_link = [](std::size_t i) { return RowLink{i == 999'998 ? std::nan("") : 0.0, std::nullopt}; };
+  t.make_link = [](std::size_t i) { return RowLink{i == 999'998 ? std::nan("") : 0.0, std::nullopt, std::nullopt}; };
   try {
     (void)render_html(r);
     FAIL() << "accepted a NaN link";

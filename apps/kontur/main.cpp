@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   app.footer("Example:\n  kontur spline examples/curves/seed_example1.json --step 0.05\n"
              "  kontur arc 110,100,50 100,110,50 90,100,50 --omega 0.5 --steps 4\n"
              "  kontur check program.ngc\n"
+             "  kontur run examples/programs/square_arc.ngc -o square_arc.csv --report square_arc.html\n"
              "G-code: RS274 core with LinuxCNC, Fanuc and Sinumerik extensions; Kontur's own conic block is\n"
              "  CONIC X- Y- Z- I1=- J1=- K1=- I2=- J2=- K2=- I3=- J3=- K3=- (see `kontur check --help`).\n"
              "  kontur spline examples/curves/seed_example1.json --report spline.html   (open it in a browser)\n"

@@ -132,7 +132,7 @@ void add_arc_motion(report::Report& r, const Curve& curve, const std::optional<A
     speed.title = fmt::format("Path speed over time (equal {} steps)", angle_name);
     speed.x_label = "t [s]";
     speed.y_label = "v [mm/s]";
-    speed.series.push_back({"path speed", t_dense, speed_dense, "#1f77b4", false});
+    speed.series.push_back({"path speed", t_dense, speed_dense, "#1f77b4", false, 0});
     speed.limits.push_back({"mean speed V = l / t", timing->mean_speed_mm_s, "#7f7f7f"});
     r.plots.push_back(std::move(speed));
     add_axis_plot(r, "Axis velocity over time", "v [mm/s]", t_dense, v_dense);
@@ -148,7 +148,7 @@ void add_arc_motion(report::Report& r, const Curve& curve, const std::optional<A
                             fixed(row.angle_rad * 180.0 / std::numbers::pi, 6), fixed(row.relative.x()),
                             fixed(row.relative.y()), fixed(row.relative.z()), fixed(row.sample.point.x()),
                             fixed(row.sample.point.y()), fixed(row.sample.point.z())});
-      table.links.push_back({row.sample.time_s, row.sample.point});
+      table.links.push_back({row.sample.time_s, row.sample.point, std::nullopt});
     }
     r.tables.push_back(std::move(table));
   }
@@ -189,7 +189,7 @@ void add_arc_motion(report::Report& r, const Curve& curve, const std::optional<A
     sp.title = fmt::format("Path speed per servo period (constant feed, T = {} s)", num(period));
     sp.x_label = "t [s]";
     sp.y_label = "v [mm/s]";
-    sp.series.push_back({"path speed (arc per period / T)", tv, speed, "#1f77b4", true});
+    sp.series.push_back({"path speed (arc per period / T)", tv, speed, "#1f77b4", true, 0});
     sp.limits.push_back(
         {fmt::format("commanded feed {} mm/min", num(feed->feed_mm_min())), feed->feed_mm_min() / 60.0, "#d62728"});
     r.plots.push_back(std::move(sp));
@@ -209,7 +209,7 @@ void add_arc_motion(report::Report& r, const Curve& curve, const std::optional<A
                                       fixed(m.point.x()),   fixed(m.point.y()), fixed(m.point.z())};
     };
     table.make_link = [&feed_samples](std::size_t k) {
-      return report::RowLink{feed_samples[k].time_s, feed_samples[k].point};
+      return report::RowLink{feed_samples[k].time_s, feed_samples[k].point, std::nullopt};
     };
     r.tables.push_back(std::move(table));
   }

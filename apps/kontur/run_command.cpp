@@ -3,11 +3,14 @@
 // setpoints go to a CSV or binary file (or stdout), and a JSON summary checks them independently.
 #include "commands.hpp"
 #include "time_optimal_summary.hpp"
+#include "report_output.hpp"
+#include "run_report.hpp"
 
 #include <kontur/error.hpp>
 #include <kontur/gcode/reader.hpp>
 #include <kontur/io/atomic_file.hpp>
 #include <kontur/io/setpoint_writer.hpp>
+#include <kontur/length.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/plan/program_moves.hpp>
@@ -16,6 +19,13 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 
@@ -29,11 +39,76 @@ struct RunOptions {
   std::string format = "csv";
   std::string summary;
   bool time_optimal = false;
+  std::string report;
+  bool quiet = false;
 };
 
+// A progress bar on stderr for runs longer than a second, only when stderr is a terminal (and
+// not --quiet). Redrawn at most ten times a second; erased at the end.
+class Progress {
+ public:
+  explicit Progress(bool enabled) : enabled_(enabled && isatty(fileno(stderr)) != 0) {}
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+  ~Progress() { clear(); }
+  [[nodiscard]] bool enabled() const noexcept { return enabled_; }
+  /// `fraction` of `phase` done.
+  void update(const char* phase, double fraction, const std::string& detail) {
+    if (!enabled_) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - start_ < std::chrono::seconds(1) || now - last_ < std::chrono::milliseconds(100)) return;
+    last_ = now;
+    constexpr int width = 30;
+    const int filled = static_cast<int>(std::clamp(fraction, 0.0, 1.0) * width);
+    std::fprintf(stderr, "\r\033[Kkontur run: %-8s [%s%s] %3d%% %s", phase, std::string(filled, '#').c_str(),
+                 std::string(width - filled, ' ').c_str(), static_cast<int>(std::clamp(fraction, 0.0, 1.0) * 100),
+                 detail.c_str());
+    std::fflush(stderr);
+    drawn_ = true;
+  }
+  void clear() {
+    if (!drawn_) return;
+    std::fprintf(stderr, "\r\033[K");
+    std::fflush(stderr);
+    drawn_ = false;
+  }
+
+ private:
+  bool enabled_;
+  bool drawn_ = false;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
+};
+
+// Lines of a text file (for the progress bar; 0 if it cannot be read: the reader reports that).
+long count_lines(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return 0;
+  long n = 1;
+  char buf[1 << 16];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+    n += static_cast<long>(std::count(buf, buf + in.gcount(), '\n'));
+    if (!in) break;
+  }
+  return n;
+}
+
 bool run_program(const RunOptions& o) {
+  // The report path is checked before any work: not an input, not the setpoint file.
+  std::vector<std::filesystem::path> inputs = {o.program};
+  if (!o.machine.empty()) inputs.emplace_back(o.machine);
+  if (!o.report.empty()) {
+    if (o.report == "-" && o.output == "-")
+      throw CLI::ValidationError("--report", "--report - needs -o FILE: the setpoints already go to the standard output");
+    if (o.report != "-") {
+      check_output_not_input(o.report, inputs);
+      if (o.output != "-") check_output_not_input(o.report, {o.output});
+    }
+  }
   const Machine machine = o.machine.empty() ? default_machine() : read_machine(o.machine);
   if (o.machine.empty()) validate(machine);
+  Progress progress(!o.quiet);
+  const long total_lines = progress.enabled() ? count_lines(o.program) : 0;
+  std::vector<RunMove> run_moves;
   const SetpointFormat format = o.format == "binary" ? SetpointFormat::binary : SetpointFormat::csv;
   plan::MotionPlanner planner(machine);
   std::vector<std::shared_ptr<const Curve>> curves;  // kept for the check
@@ -60,8 +135,13 @@ bool run_program(const RunOptions& o) {
       planner.push(move);
       curves.push_back(curve);
       moves.push_back({curve.get(), b.location.line});
-      reference_moves.push_back({curve.get(), feed, exact});
+      reference_moves.push_back({curve.get(), move.feed_mm_s, move.exact_stop});
+      const auto len = b.length_mm();
+      run_moves.push_back({b.location.line, gcode::to_string(b.type), len ? *len : length(*curve), move.feed_mm_s});
       drain();
+      if (total_lines > 0)
+        progress.update("planning", static_cast<double>(b.location.line) / static_cast<double>(total_lines),
+                        fmt::format("line {} of {}", b.location.line, total_lines));
     });
     planner.finish();
     drain();
@@ -69,9 +149,19 @@ bool run_program(const RunOptions& o) {
   if (o.output == "-") {
     produce(std::cout);
   } else {
-    write_file_atomically(o.output, produce, {o.program, o.machine});
+    write_file_atomically(o.output, produce, inputs);
   }
-  const verify::Report r = verify::check(samples, moves, machine);
+  progress.clear();
+  std::unique_ptr<RunReportBuilder> builder;
+  if (!o.report.empty()) builder = std::make_unique<RunReportBuilder>(machine, run_moves);
+  const std::size_t n = samples.size();
+  const verify::Report r = verify::check(samples, moves, machine, [&](const verify::SampleMeasure& m) {
+    if (builder) builder->observe(m);
+    if (progress.enabled() && (m.index & 1023) == 0)
+      progress.update("checking", static_cast<double>(m.index) / static_cast<double>(n),
+                      fmt::format("setpoint {} of {}", m.index, n));
+  });
+  progress.clear();
   nlohmann::ordered_json j;
   j["program"] = o.program;
   j["machine"] = machine.source;
@@ -89,11 +179,46 @@ bool run_program(const RunOptions& o) {
   j["end_error_mm"] = r.end_error_mm;
   j["passed"] = r.passed(machine);
   j["failures"] = r.failures(machine);
+  // Per block (docs/setpoints.md): the setpoints the checker matched to it and their maxima.
+  auto blocks = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < r.blocks.size(); ++i) {
+    const verify::BlockStats& b = r.blocks[i];
+    nlohmann::ordered_json e;
+    e["line"] = b.source_line;
+    e["type"] = run_moves[i].type;
+    e["length_mm"] = run_moves[i].length_mm;
+    e["feed_mm_s"] = run_moves[i].feed_mm_s;
+    e["setpoints"] = b.samples;
+    if (b.samples > 0) {
+      e["t_start_s"] = b.t_first_s;
+      e["t_end_s"] = b.t_last_s;
+    } else {
+      e["t_start_s"] = nullptr;
+      e["t_end_s"] = nullptr;
+    }
+    e["max_velocity_ratio"] = b.max_velocity_ratio;
+    e["max_acceleration_ratio"] = b.max_acceleration_ratio;
+    e["max_jerk_ratio"] = b.max_jerk_ratio;
+    e["max_path_error_mm"] = b.max_path_error_mm;
+    e["max_chord_error_mm"] = b.max_chord_error_mm;
+    blocks.push_back(std::move(e));
+  }
+  j["blocks"] = std::move(blocks);
+  if (builder) {
+    const report::Report rep = builder->build(r, samples, o.program);
+    std::vector<std::filesystem::path> report_inputs = inputs;
+    if (o.output != "-") report_inputs.emplace_back(o.output);
+    report::write_html_report(rep, o.report, report_inputs, RunReportBuilder::render_options());
+  }
   const std::string text = j.dump(2) + "\n";
   if (o.summary.empty()) {
-    std::cerr << text;
+    if (!o.quiet) std::cerr << text;
+  } else if (o.summary == "-") {
+    if (o.output == "-" || o.report == "-")
+      throw CLI::ValidationError("--summary", "--summary - needs -o FILE and no --report -: stdout is taken");
+    std::cout << text;
   } else {
-    write_file_atomically(o.summary, [&](std::ostream& out) { out << text; }, {o.program, o.machine});
+    write_file_atomically(o.summary, [&](std::ostream& out) { out << text; }, inputs);
   }
   return r.passed(machine);
 }
@@ -110,10 +235,21 @@ void register_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--format", o->format, "csv or binary (docs/setpoints.md)")
       ->check(CLI::IsMember({"csv", "binary"}))
       ->capture_default_str();
-  cmd->add_option("--summary", o->summary, "JSON summary file (default: stderr)");
+  cmd->add_option("--summary", o->summary,
+                  "JSON summary file, per program and per block (default: stderr, none with --quiet); - for stdout "
+                  "(with -o FILE)");
+  cmd->add_option("--report", o->report,
+                  "write a self-contained HTML report (path coloured by speed, speed against feed, axis velocity, "
+                  "acceleration and jerk with their limits, chord error, per-block table; docs/report.md) to FILE, "
+                  "atomically; - for stdout only with -o FILE")
+      ->type_name("FILE");
   cmd->add_flag("--time-optimal", o->time_optimal,
                 "add the time-optimal reference (acceleration-limited) and the ratio of the total time to it");
-  cmd->footer("Example:\n  kontur run examples/programs/square.ngc -o square.csv --summary square.json\n"
+  cmd->add_flag("--quiet", o->quiet, "no progress bar and no summary on stderr (errors are still printed)");
+  cmd->footer("Example:\n  kontur run examples/programs/square_arc.ngc -o square_arc.csv --summary square_arc.json "
+              "--report square_arc.html\n"
+              "  kontur run examples/programs/square_arc.ngc -o - --quiet | head   (setpoints to stdout)\n"
+              "A progress bar is drawn on stderr when it is a terminal and the run takes longer than a second.\n"
               "Exit codes: 0 setpoints written and within the limits, 1 invalid program or machine, 2 wrong command "
               "line, 4 setpoints written but the check found a limit exceeded (see the summary).");
   cmd->callback([o, &exit_code]() { exit_code = run_program(*o) ? exit_ok : exit_check_failed; });

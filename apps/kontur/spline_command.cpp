@@ -77,8 +77,8 @@ void write_spline_report(const SplineOptions& o, const NurbsCurve& curve, const 
   path.name = "curve";
   path.width_px = 6.0;
   path.scalar_name = "curvature [1/mm]";
-  report::Series kappa{"curvature", {}, {}, "#1f77b4", false};
-  report::Series speed{"|C'(u)|", {}, {}, "#ff7f0e", false};
+  report::Series kappa{"curvature", {}, {}, "#1f77b4", false, 0};
+  report::Series speed{"|C'(u)|", {}, {}, "#ff7f0e", false, 0};
   for (std::size_t i = 0; i < sp.size(); ++i) {
     for (std::size_t k = 0; k < per_span || (i + 1 == sp.size() && k == per_span); ++k) {
       const double u = sp[i].u_start + (sp[i].u_end - sp[i].u_start) * static_cast<double>(k) / static_cast<double>(per_span);
@@ -141,7 +141,7 @@ void write_spline_report(const SplineOptions& o, const NurbsCurve& curve, const 
   for (std::size_t i = 0; i < sp.size(); ++i) {
     const Vec3 q = curve.point(sp[i].u_start);
     table.rows.push_back({fmt::format("{}", i), num(sp[i].u_start), num(sp[i].u_end), num(q.x()), num(q.y()), num(q.z())});
-    table.links.push_back({sp[i].u_start, q});
+    table.links.push_back({sp[i].u_start, q, std::nullopt});
   }
   rep.tables.push_back(std::move(table));
   rep.notes.push_back("The curve is drawn from 64 points per span (fewer for long curves); a line or series with more "

@@ -38,6 +38,7 @@ void check_point(const Vec3& p, const Where& where) {
 
 void check_link(const Table& t, const RowLink& l, std::size_t i) {
   check_finite(l.x, [&] { return fmt::format("table '{}' link {} x", t.title, i); });
+  if (l.x_end) check_finite(*l.x_end, [&] { return fmt::format("table '{}' link {} x_end", t.title, i); });
   if (l.point_mm) check_point(*l.point_mm, [&] { return fmt::format("table '{}' link {} point", t.title, i); });
 }
 
@@ -142,7 +143,7 @@ Json polyline_json(const Polyline& pl, const RenderOptions& o) {
     j["scalar_name"] = pl.scalar_name;
   }
   if (!pl.labels.empty()) j["labels"] = std::move(jl);
-  j["points"] = n;
+  j["points"] = pl.source_points > 0 ? pl.source_points : n;
   j["shown"] = keep.size();
   return j;
 }
@@ -168,7 +169,7 @@ Json plot_json(const Plot& p, const RenderOptions& o) {
     }
     e["x"] = std::move(jx);
     e["y"] = std::move(jy);
-    e["points"] = s.x.size();
+    e["points"] = s.source_points > 0 ? s.source_points : s.x.size();
     e["shown"] = keep.size();
     series.push_back(std::move(e));
   }
@@ -206,6 +207,7 @@ Json table_json(const Table& t) {
       if (lazy) check_link(t, link, i);
       Json l;
       l["t"] = z0(link.x);
+      if (link.x_end) l["t1"] = z0(*link.x_end);
       if (link.point_mm) {
         const Vec3& q = *link.point_mm;
         l["p"] = {z0(q.x()), z0(q.y()), z0(q.z())};
@@ -439,7 +441,15 @@ constexpr const char* page_viewer = R"html(</script>
     tr.classList.add("selected");
     timePlots.forEach(function (tp) {
       var marker = { type: "line", yref: "paper", y0: 0, y1: 1, x0: link.t, x1: link.t, line: { color: "#ff6f00", width: 2 } };
-      Plotly.relayout(tp.div, { shapes: tp.shapes.concat([marker]) });
+      var update = { shapes: tp.shapes.concat([marker]) };
+      if (link.t1 !== undefined) {
+        // A range (a block's time span): shade it and zoom to it with a margin on both sides.
+        update.shapes.push({ type: "rect", yref: "paper", y0: 0, y1: 1, x0: link.t, x1: link.t1, line: { width: 0 },
+                             fillcolor: "#ff6f00", opacity: 0.15 });
+        var pad = Math.max((link.t1 - link.t) * 0.25, 1e-3);
+        update["xaxis.range"] = [link.t - pad, link.t1 + pad];
+      }
+      Plotly.relayout(tp.div, update);
     });
     if (link.p) {
       var idx = traces.length - 1;
@@ -543,6 +553,85 @@ std::vector<std::size_t> decimate_min_max(std::size_t n, std::size_t buckets,
   std::sort(keep.begin(), keep.end());
   keep.erase(std::unique(keep.begin(), keep.end()), keep.end());
   return keep;
+}
+
+StreamDecimator::StreamDecimator(std::size_t channels, std::size_t buckets)
+    : channels_(channels), buckets_(std::max<std::size_t>(buckets, 1)) {}
+
+void StreamDecimator::copy_slot(Bucket& to, std::size_t to_slot, const Bucket& from, std::size_t from_slot) const {
+  to.index[to_slot] = from.index[from_slot];
+  to.x[to_slot] = from.x[from_slot];
+  for (std::size_t c = 0; c < channels_; ++c)
+    to.values[to_slot * channels_ + c] = from.values[from_slot * channels_ + c];
+}
+
+void StreamDecimator::add(double x, std::span<const double> values) {
+  if (values.size() != channels_)
+    throw InputError("report-model", fmt::format("StreamDecimator: {} values for {} channels", values.size(), channels_));
+  const std::size_t slots = 2 + 2 * channels_;
+  Bucket& b = current_;
+  if (b.n == 0) {
+    b.index.assign(slots, count_);
+    b.x.assign(slots, x);
+    b.values.resize(slots * channels_);
+    for (std::size_t q = 0; q < slots; ++q)
+      for (std::size_t c = 0; c < channels_; ++c) b.values[q * channels_ + c] = values[c];
+  } else {
+    auto set = [&](std::size_t q) {
+      b.index[q] = count_;
+      b.x[q] = x;
+      for (std::size_t c = 0; c < channels_; ++c) b.values[q * channels_ + c] = values[c];
+    };
+    set(1);
+    for (std::size_t c = 0; c < channels_; ++c) {
+      if (values[c] < b.values[(2 + 2 * c) * channels_ + c]) set(2 + 2 * c);
+      if (values[c] > b.values[(3 + 2 * c) * channels_ + c]) set(3 + 2 * c);
+    }
+  }
+  ++b.n;
+  ++count_;
+  if (b.n < run_) return;
+  full_.push_back(std::move(current_));
+  current_ = Bucket{};
+  if (full_.size() < 2 * buckets_) return;
+  // Merge neighbours in pairs: the earlier bucket's first, the later one's last, and per channel
+  // the smaller minimum and larger maximum (the earlier one on a tie: the first occurrence).
+  std::vector<Bucket> merged;
+  merged.reserve(buckets_);
+  for (std::size_t i = 0; i + 1 < full_.size(); i += 2) {
+    Bucket m = std::move(full_[i]);
+    const Bucket& later = full_[i + 1];
+    copy_slot(m, 1, later, 1);
+    for (std::size_t c = 0; c < channels_; ++c) {
+      const std::size_t lo = 2 + 2 * c, hi = 3 + 2 * c;
+      if (later.values[lo * channels_ + c] < m.values[lo * channels_ + c]) copy_slot(m, lo, later, lo);
+      if (later.values[hi * channels_ + c] > m.values[hi * channels_ + c]) copy_slot(m, hi, later, hi);
+    }
+    m.n += later.n;
+    merged.push_back(std::move(m));
+  }
+  full_ = std::move(merged);
+  run_ *= 2;
+}
+
+StreamDecimator::Kept StreamDecimator::kept() const {
+  std::vector<std::pair<std::size_t, std::pair<const Bucket*, std::size_t>>> all;
+  auto collect = [&](const Bucket& b) {
+    for (std::size_t q = 0; q < b.index.size(); ++q) all.push_back({b.index[q], {&b, q}});
+  };
+  for (const Bucket& b : full_) collect(b);
+  if (current_.n > 0) collect(current_);
+  std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  Kept k;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (i > 0 && all[i].first == all[i - 1].first) continue;
+    const Bucket& b = *all[i].second.first;
+    const std::size_t q = all[i].second.second;
+    k.index.push_back(b.index[q]);
+    k.x.push_back(b.x[q]);
+    for (std::size_t c = 0; c < channels_; ++c) k.values.push_back(b.values[q * channels_ + c]);
+  }
+  return k;
 }
 
 bool plotly_embedded() noexcept { return detail::plotly_chunk_count > 0; }

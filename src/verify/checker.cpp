@@ -86,40 +86,29 @@ std::vector<std::string> Report::failures(const Machine& machine) const {
 }
 
 Report check(const std::vector<Sample>& s, const std::vector<PathMove>& moves, const Machine& machine) {
+  return check(s, moves, machine, Observer{});
+}
+
+Report check(const std::vector<Sample>& s, const std::vector<PathMove>& moves, const Machine& machine,
+             const Observer& observer) {
   Report r;
   r.samples = static_cast<long>(s.size());
   const double T = machine.servo_period_s;
   for (const Sample& p : s) r.finite = r.finite && std::isfinite(p.t_s) && p.position.allFinite();
   if (!r.finite || s.empty() || moves.empty()) return r;
-  // Time and finite differences on each axis.
   for (std::size_t k = 1; k < s.size(); ++k)
     if (std::abs((s[k].t_s - s[k - 1].t_s) - T) > 1e-9 * T + 4e-16 * std::abs(s[k].t_s)) r.uniform_time = false;
-  for (const AxisLimits& ax : machine.axes) {
-    const int i = linear_axis_index(ax.name);
-    if (i < 0) continue;  // rotary axes do not carry the path
-    for (std::size_t k = 1; k < s.size(); ++k) {
-      const double v = std::abs(s[k].position[i] - s[k - 1].position[i]) / T / ax.max_velocity;
-      if (v > r.max_velocity_ratio) {
-        r.max_velocity_ratio = v;
-        r.worst_velocity_axis = ax.name;
-      }
-      if (k >= 2) {
-        const double a = std::abs(s[k].position[i] - 2 * s[k - 1].position[i] + s[k - 2].position[i]) / (T * T) / ax.max_acceleration;
-        if (a > r.max_acceleration_ratio) {
-          r.max_acceleration_ratio = a;
-          r.worst_acceleration_axis = ax.name;
-        }
-      }
-      if (k >= 3) {
-        const double j = std::abs(s[k].position[i] - 3 * s[k - 1].position[i] + 3 * s[k - 2].position[i] - s[k - 3].position[i]) /
-                         (T * T * T) / ax.max_jerk;
-        if (j > r.max_jerk_ratio) {
-          r.max_jerk_ratio = j;
-          r.worst_jerk_axis = ax.name;
-        }
-      }
-    }
-  }
+  // The linear axes (rotary axes do not carry the path) and the largest ratio of each.
+  struct Axis {
+    const AxisLimits* limits;
+    int index;
+    double max_v = 0.0, max_a = 0.0, max_j = 0.0;
+  };
+  std::vector<Axis> axes;
+  for (const AxisLimits& ax : machine.axes)
+    if (const int i = linear_axis_index(ax.name); i >= 0) axes.push_back({&ax, i});
+  r.blocks.resize(moves.size());
+  for (std::size_t i = 0; i < moves.size(); ++i) r.blocks[i].source_line = moves[i].source_line;
   // Path: the start and end, each setpoint's distance from its move, each chord's bow.
   const Curve& first = *moves.front().curve;
   const Curve& last = *moves.back().curve;
@@ -136,7 +125,38 @@ Report check(const std::vector<Sample>& s, const std::vector<PathMove>& moves, c
   std::size_t m = 0;
   double u_prev = moves[0].curve->u_min();
   std::size_t m_prev = 0;
+  SampleMeasure sm;
   for (std::size_t k = 0; k < s.size(); ++k) {
+    // Finite differences on each axis: velocity, acceleration and jerk ending at k.
+    const Vec3& p0 = s[k].position;
+    sm.velocity.setZero();
+    sm.acceleration.setZero();
+    sm.jerk.setZero();
+    if (k >= 1) sm.velocity = (p0 - s[k - 1].position) / T;
+    if (k >= 2) sm.acceleration = (p0 - 2 * s[k - 1].position + s[k - 2].position) / (T * T);
+    if (k >= 3) sm.jerk = (p0 - 3 * s[k - 1].position + 3 * s[k - 2].position - s[k - 3].position) / (T * T * T);
+    sm.velocity_ratio = sm.acceleration_ratio = sm.jerk_ratio = 0.0;
+    for (Axis& ax : axes) {
+      const int i = ax.index;
+      if (k >= 1) {
+        const double v = std::abs(s[k].position[i] - s[k - 1].position[i]) / T / ax.limits->max_velocity;
+        ax.max_v = std::max(ax.max_v, v);
+        sm.velocity_ratio = std::max(sm.velocity_ratio, v);
+      }
+      if (k >= 2) {
+        const double a = std::abs(s[k].position[i] - 2 * s[k - 1].position[i] + s[k - 2].position[i]) / (T * T) /
+                         ax.limits->max_acceleration;
+        ax.max_a = std::max(ax.max_a, a);
+        sm.acceleration_ratio = std::max(sm.acceleration_ratio, a);
+      }
+      if (k >= 3) {
+        const double j = std::abs(s[k].position[i] - 3 * s[k - 1].position[i] + 3 * s[k - 2].position[i] -
+                                  s[k - 3].position[i]) /
+                         (T * T * T) / ax.limits->max_jerk;
+        ax.max_j = std::max(ax.max_j, j);
+        sm.jerk_ratio = std::max(sm.jerk_ratio, j);
+      }
+    }
     // The source line selects the move (searching forward: a program may pass the same place
     // twice); among consecutive moves of the same line (canned cycles), or where lines are not
     // known, the nearest of the next few wins.
@@ -167,6 +187,7 @@ Report check(const std::vector<Sample>& s, const std::vector<PathMove>& moves, c
       }
     }
     r.max_path_error_mm = std::max(r.max_path_error_mm, d);
+    double chord = 0.0;
     if (k > 0 && m == m_prev && u > u_prev) {
       // The bow of the path between the two setpoints from their chord.
       const Vec3 a = s[k - 1].position, b = s[k].position, ab = b - a;
@@ -174,11 +195,48 @@ Report check(const std::vector<Sample>& s, const std::vector<PathMove>& moves, c
       for (int q = 1; q < 8; ++q) {
         const Vec3 p = c->point(u_prev + (u - u_prev) * q / 8.0) - a;
         const double t = len2 > 0.0 ? std::clamp(p.dot(ab) / len2, 0.0, 1.0) : 0.0;
-        r.max_chord_error_mm = std::max(r.max_chord_error_mm, (p - t * ab).norm());
+        chord = std::max(chord, (p - t * ab).norm());
       }
+      r.max_chord_error_mm = std::max(r.max_chord_error_mm, chord);
+    }
+    BlockStats& b = r.blocks[m];
+    if (b.samples++ == 0) {
+      b.first_sample = static_cast<long>(k);
+      b.t_first_s = s[k].t_s;
+    }
+    b.last_sample = static_cast<long>(k);
+    b.t_last_s = s[k].t_s;
+    b.max_path_error_mm = std::max(b.max_path_error_mm, d);
+    b.max_chord_error_mm = std::max(b.max_chord_error_mm, chord);
+    b.max_velocity_ratio = std::max(b.max_velocity_ratio, sm.velocity_ratio);
+    b.max_acceleration_ratio = std::max(b.max_acceleration_ratio, sm.acceleration_ratio);
+    b.max_jerk_ratio = std::max(b.max_jerk_ratio, sm.jerk_ratio);
+    if (observer) {
+      sm.index = k;
+      sm.t_s = s[k].t_s;
+      sm.position = p0;
+      sm.path_error_mm = d;
+      sm.chord_error_mm = chord;
+      sm.move = m;
+      observer(sm);
     }
     u_prev = u;
     m_prev = m;
+  }
+  // The worst axis: the first in the machine's order with the largest ratio.
+  for (const Axis& ax : axes) {
+    if (ax.max_v > r.max_velocity_ratio) {
+      r.max_velocity_ratio = ax.max_v;
+      r.worst_velocity_axis = ax.limits->name;
+    }
+    if (ax.max_a > r.max_acceleration_ratio) {
+      r.max_acceleration_ratio = ax.max_a;
+      r.worst_acceleration_axis = ax.limits->name;
+    }
+    if (ax.max_j > r.max_jerk_ratio) {
+      r.max_jerk_ratio = ax.max_j;
+      r.worst_jerk_axis = ax.limits->name;
+    }
   }
   return r;
 }

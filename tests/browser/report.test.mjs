@@ -59,6 +59,8 @@ const reports = [
   ["arc-feed", ["arc", "100,200,300", "200,250,310", "260,180,400", "--feed", "600", "--period", "0.01"], 4],
   ["conic", ["conic", "105,200,300", "104,201.08,301.44", "103,201.44,301.92", "100,201.8,302.4",
              "96,201.08,301.44", "--omega", "0.5", "--steps", "4"], 4],
+  // kontur run: path speed against the feed, axis velocity, acceleration, jerk, chord error.
+  ["run", ["run", "examples/programs/square_arc.ngc", "-o", join(work, "run.csv"), "--quiet"], 5],
 ];
 
 for (const [name, args, plots2d] of reports) {
@@ -87,6 +89,13 @@ for (const [name, args, plots2d] of reports) {
     assert.ok(await page.locator("#summary tr").count() >= 2);
     assert.ok(await page.locator("#tables table.data tr").count() >= 2);
     await page.screenshot({ path: join(artifacts, `report-${name}.png`), fullPage: false });
+    // A screenshot of every plot on its own (build/test-artifacts/report-NAME-ID.png).
+    for (const d of drawn) {
+      const plot = page.locator(`#${d.id}`);
+      await plot.scrollIntoViewIfNeeded();
+      await plot.screenshot({ path: join(artifacts, `report-${name}-${d.id}.png`) });
+    }
+    await page.evaluate(() => window.scrollTo(0, 0));
     // Clicking a row of a linked table marks its x on the linked plots and its point in the views.
     const row = page.locator("tr.link").nth(1);
     await row.click();
@@ -97,6 +106,19 @@ for (const [name, args, plots2d] of reports) {
       scene: (() => { const d = document.getElementById("scene3d").data; return d[d.length - 1].x.length; })(),
     }));
     assert.ok(marks.plots >= 1, `no plot marked: ${JSON.stringify(marks)}`);
+    if (name === "run") {
+      // A block's row shades its time span on every time plot and zooms them to it.
+      const zoom = await page.evaluate(() => Array.from(document.querySelectorAll("#plots .js-plotly-plot")).map((d) => ({
+        rect: (d.layout.shapes || []).some((s) => s.type === "rect" && s.fillcolor === "#ff6f00"),
+        range: d.layout.xaxis.range,
+      })));
+      for (const z of zoom) {
+        assert.ok(z.rect, `block span not shaded: ${JSON.stringify(zoom)}`);
+        assert.ok(z.range[1] - z.range[0] < 5, `not zoomed to the block: ${JSON.stringify(z.range)}`);
+      }
+      // The block table has a row per move of the program (8).
+      assert.equal(await page.locator("#tables table.data tr.link").count(), 8);
+    }
     assert.equal(marks.scene, 1, "the selected point is not marked in the 3-D view");
     assert.deepEqual(errors, [], "console errors");
     assert.deepEqual(requests, [], "network requests other than the report itself");

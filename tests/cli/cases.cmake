@@ -133,6 +133,24 @@ if(KONTUR_BUILD_REPORT)
            COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:kontur_app>;arc;1,1,1;2,2,2;3,3,3;--omega;1;--steps;3;--report;${report_dir}/collinear.html"
                    -DEXPECT_EXIT=1 "-DEXPECT_REGEX=collinear" -DNO_FILE=${report_dir}/collinear.html
                    -DWORKDIR=${PROJECT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/run_case.cmake)
+  # kontur run --report: one self-contained file with the run's plots and the block table.
+  add_test(NAME cli_run_report_written
+           COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:kontur_app>;run;examples/programs/square_arc.ngc;-o;${report_dir}/run.csv;--summary;${report_dir}/run.json;--report;${report_dir}/run.html"
+                   -DEXPECT_EXIT=0 -DEXPECT_FILE=${report_dir}/run.html
+                   "-DEXPECT_FILE_REGEX=^<!DOCTYPE html>.*</html>\n$" "-DEXPECT_FILE_REGEX2=Axis jerk over time"
+                   "-DEXPECT_FILE_REGEX3=Blocks \\(click a row"
+                   -DEMPTY_STDERR=ON -DWORKDIR=${PROJECT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/run_case.cmake)
+  add_test(NAME cli_run_report_bad_program_writes_nothing
+           COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:kontur_app>;run;tests/data/gcode/bad/knot_count.ngc;-o;${report_dir}/bad.csv;--report;${report_dir}/bad.html"
+                   -DEXPECT_EXIT=1 "-DEXPECT_REGEX=knot_count\\.ngc:3:1: G06\\.2: 9 knots given" -DNO_FILE=${report_dir}/bad.html
+                   -DWORKDIR=${PROJECT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/run_case.cmake)
+  kontur_cli_case(run_report_refuses_to_overwrite_its_program 1
+                  "square_arc\\.ngc: is an input of this command; refusing to overwrite it" run
+                  examples/programs/square_arc.ngc -o ${report_dir}/run2.csv --report examples/programs/square_arc.ngc)
+  kontur_cli_case(run_report_refuses_the_setpoint_file 1 "run3\\.csv: is an input" run
+                  examples/programs/square_arc.ngc -o ${report_dir}/run3.csv --report ${report_dir}/run3.csv)
+  kontur_cli_case(run_report_stdout_needs_a_setpoint_file 2 "--report - needs -o FILE" run
+                  examples/programs/square_arc.ngc --report -)
 endif()
 
 # kontur run (issue 5, in progress): the bundled example passes the independent check.
@@ -141,3 +159,12 @@ kontur_cli_case(run_example 0 "\"passed\": true" run examples/programs/square_ar
 kontur_cli_case(run_time_optimal 0 "\"time_optimal_s\": [0-9.]+,[^}]*\"time_ratio\": 1\\.[0-9]+" run examples/programs/square_arc.ngc --time-optimal -o /tmp/kontur_cli_run_time_optimal.csv)
 kontur_cli_case(run_bad_program 1 "knot_count\\.ngc:[0-9]+:[0-9]+: G0?6\\.2: [0-9]+ knots given" run tests/data/gcode/bad/knot_count.ngc -o /tmp/kontur_cli_run_bad.csv)
 kontur_cli_case(run_refuses_to_overwrite_its_program 1 "square_arc\\.ngc" run examples/programs/square_arc.ngc -o examples/programs/square_arc.ngc)
+kontur_cli_case(run_help 0 "Example:.*--report" run --help)
+kontur_cli_case(machine_help 0 "Example" machine --help)
+kontur_cli_case(run_summary_has_blocks 0 "\"blocks\": \\[.*\"line\": 3,.*\"type\": \"rapid\".*\"max_jerk_ratio\"" run
+                examples/programs/square_arc.ngc -o /tmp/kontur_cli_run_blocks.csv)
+# --quiet: nothing on stderr on success (no summary, no progress bar); the setpoints still go to stdout.
+add_test(NAME cli_run_quiet_prints_nothing_to_stderr
+         COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:kontur_app>;run;examples/programs/square_arc.ngc;-o;-;--quiet"
+                 -DEXPECT_EXIT=0 "-DEXPECT_REGEX=^t,x,y,z,v,block\n" -DEMPTY_STDERR=ON
+                 -DWORKDIR=${PROJECT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/run_case.cmake)

@@ -1,5 +1,10 @@
 # Runs one command (CMD, a ;-list) and checks its exit code (EXPECT_EXIT) and that its combined
-# output matches EXPECT_REGEX; with NO_FILE, that the file NO_FILE does not exist afterwards.
+# output matches EXPECT_REGEX; with NO_FILE, that the file NO_FILE does not exist afterwards; with
+# EXPECT_FILE, that it exists afterwards (it is removed first) and, with EXPECT_FILE_REGEX (and 2,
+# 3), that its content matches each; with EMPTY_STDERR, that nothing was written to stderr.
+if(DEFINED EXPECT_FILE)
+  file(REMOVE "${EXPECT_FILE}")
+endif()
 execute_process(COMMAND ${CMD} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err
                 WORKING_DIRECTORY ${WORKDIR})
 set(all "${out}${err}")
@@ -11,4 +16,18 @@ if(DEFINED EXPECT_REGEX AND NOT all MATCHES "${EXPECT_REGEX}")
 endif()
 if(DEFINED NO_FILE AND EXISTS "${NO_FILE}")
   message(FATAL_ERROR "${NO_FILE} exists but must not")
+endif()
+if(DEFINED EXPECT_FILE)
+  if(NOT EXISTS "${EXPECT_FILE}")
+    message(FATAL_ERROR "${EXPECT_FILE} was not written")
+  endif()
+  file(READ "${EXPECT_FILE}" content)
+  foreach(v EXPECT_FILE_REGEX EXPECT_FILE_REGEX2 EXPECT_FILE_REGEX3)
+    if(DEFINED ${v} AND NOT content MATCHES "${${v}}")
+      message(FATAL_ERROR "${EXPECT_FILE} does not match '${${v}}'")
+    endif()
+  endforeach()
+endif()
+if(EMPTY_STDERR AND NOT "${err}" STREQUAL "")
+  message(FATAL_ERROR "stderr is not empty:\n${err}")
 endif()

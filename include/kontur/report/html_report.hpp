@@ -45,6 +45,9 @@ struct Polyline {
   std::string scalar_name;
   /// Optional text per point shown beside the marker (e.g. "r1".."r5"); empty or one per point.
   std::vector<std::string> labels;
+  /// The number of points before a decimation done by the command (StreamDecimator); 0: the
+  /// points given are all there were.
+  std::size_t source_points = 0;
 };
 
 /// A horizontal line on a 2-D plot, e.g. an axis limit or the commanded feed.
@@ -61,6 +64,7 @@ struct Series {
   std::vector<double> y;  ///< same count as x
   std::string color;      ///< CSS colour; empty: plotly's default sequence
   bool markers = false;   ///< draw markers as well as the line
+  std::size_t source_points = 0;  ///< points before a decimation by the command (0: x.size())
 };
 
 /// A 2-D plot: one or more series against a common x, with optional limit lines. Linked plots
@@ -80,6 +84,9 @@ struct Plot {
 struct RowLink {
   double x = 0.0;
   std::optional<Vec3> point_mm;
+  /// Optional end of a range [x, x_end] (e.g. a block's time span [s]): the range is shaded on
+  /// the linked plots and they zoom to it.
+  std::optional<double> x_end;
 };
 
 /// A table of text cells (the command formats its numbers). Tables longer than max_rows show
@@ -124,6 +131,43 @@ struct RenderOptions {
 /// channel has n values. With n <= 2 * buckets * channels.size() + 2 every index is kept.
 [[nodiscard]] std::vector<std::size_t> decimate_min_max(std::size_t n, std::size_t buckets,
                                                         std::span<const std::span<const double>> channels);
+
+/// Min/max decimation while the samples stream in, when their number is not known in advance and
+/// they should not all be kept: samples (x, then `channels` values) go into buckets of equal
+/// runs of consecutive samples; each bucket keeps its first and last sample and, per channel, the
+/// first sample with its smallest and the first with its largest value. When there are
+/// 2 * `buckets` full buckets, neighbours are merged in pairs (the run doubles), so the memory
+/// stays bounded and the global minimum and maximum of every channel (and the first and last
+/// sample) are always kept exactly. At most 2 * buckets * (2 + 2 * channels) samples come out.
+class StreamDecimator {
+ public:
+  StreamDecimator(std::size_t channels, std::size_t buckets);
+  /// Adds one sample: its x (e.g. time [s]) and one value per channel.
+  void add(double x, std::span<const double> values);
+  /// Samples added so far.
+  [[nodiscard]] std::size_t count() const noexcept { return count_; }
+  /// The kept samples in the order they were added: their index, x and values (channel c of
+  /// kept sample i is values[i * channels + c]).
+  struct Kept {
+    std::vector<std::size_t> index;
+    std::vector<double> x;
+    std::vector<double> values;
+  };
+  [[nodiscard]] Kept kept() const;
+
+ private:
+  // A bucket's kept samples in slots: 0 first, 1 last, 2 + 2c the minimum and 3 + 2c the maximum
+  // of channel c; slot q has index[q], x[q] and values[q * channels + c].
+  struct Bucket {
+    std::size_t n = 0;  // samples in it
+    std::vector<std::size_t> index;
+    std::vector<double> x, values;
+  };
+  void copy_slot(Bucket& to, std::size_t to_slot, const Bucket& from, std::size_t from_slot) const;
+  std::size_t channels_, buckets_, run_ = 1, count_ = 0;
+  std::vector<Bucket> full_;
+  Bucket current_;
+};
 
 /// Whether plotly.js is embedded in this build (KONTUR_BUILD_REPORT=ON), and its version.
 [[nodiscard]] bool plotly_embedded() noexcept;

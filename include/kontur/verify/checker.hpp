@@ -5,6 +5,8 @@
 #include <kontur/curve.hpp>
 #include <kontur/machine.hpp>
 
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,39 @@ struct Sample {
   long source_line = 0;
 };
 
+/// The measures of one programmed move (block): over the setpoints the checker matched to it.
+struct BlockStats {
+  long source_line = 0;
+  long samples = 0;                    ///< setpoints on this move (0: shorter than a period, skipped)
+  long first_sample = -1;              ///< index of its first setpoint (-1 if none)
+  long last_sample = -1;               ///< index of its last setpoint (-1 if none)
+  double t_first_s = 0.0;              ///< time of its first setpoint [s] (0 if none)
+  double t_last_s = 0.0;               ///< time of its last setpoint [s] (0 if none)
+  double max_path_error_mm = 0.0;      ///< largest distance of its setpoints from its path [mm]
+  double max_chord_error_mm = 0.0;     ///< largest bow of its chords (both ends on it) [mm]
+  double max_velocity_ratio = 0.0;     ///< over its setpoints k: max over axes of the difference ending at k / limit
+  double max_acceleration_ratio = 0.0; ///< the same for the second difference
+  double max_jerk_ratio = 0.0;         ///< the same for the third difference
+};
+
+/// What the checker measured at one setpoint, handed to an Observer in time order.
+struct SampleMeasure {
+  std::size_t index = 0;     ///< index of the setpoint
+  double t_s = 0.0;          ///< its time [s]
+  Vec3 position = Vec3::Zero();  ///< [mm]
+  /// Backward differences per axis, as the limits are checked: (p_k - p_{k-1}) / T [mm/s], then
+  /// the second [mm/s^2] and third [mm/s^3] differences over T^2 and T^3; zero where there are
+  /// not enough earlier setpoints (k < 1, 2, 3).
+  Vec3 velocity = Vec3::Zero(), acceleration = Vec3::Zero(), jerk = Vec3::Zero();
+  double velocity_ratio = 0.0, acceleration_ratio = 0.0, jerk_ratio = 0.0;  ///< max over axes / limit
+  double path_error_mm = 0.0;   ///< distance from its move's path [mm]
+  double chord_error_mm = 0.0;  ///< bow of the path from the chord ending here [mm] (0 at a move change)
+  std::size_t move = 0;         ///< index into `moves` of the move it was matched to
+};
+
+/// Called once per setpoint, in order, by check() (only when every setpoint is finite).
+using Observer = std::function<void(const SampleMeasure&)>;
+
 /// Measured maxima and what they are measured against.
 struct Report {
   long samples = 0;
@@ -36,6 +71,9 @@ struct Report {
   double max_chord_error_mm = 0.0;     ///< largest distance of the path from a cycle's chord [mm]
   double start_error_mm = 0.0;         ///< distance of the first setpoint from the path's start [mm]
   double end_error_mm = 0.0;           ///< distance of the last setpoint from the path's end [mm]
+  /// One per move, in the order of `moves` (empty when the check could not run: no setpoint,
+  /// no move, or a setpoint not finite). Their maxima are the maxima above.
+  std::vector<BlockStats> blocks;
   /// True if every measure is within the machine's limits (1e-6 relative) and tolerances.
   [[nodiscard]] bool passed(const Machine& machine) const noexcept;
   /// What failed, one line each (empty if passed).
@@ -47,5 +85,8 @@ struct Report {
 /// moves of one line (or where lines do not match) to the nearest of the next few.
 [[nodiscard]] Report check(const std::vector<Sample>& samples, const std::vector<PathMove>& moves,
                            const Machine& machine);
+/// The same, and `observer` (if set) receives every setpoint's measures, in order (for plots).
+[[nodiscard]] Report check(const std::vector<Sample>& samples, const std::vector<PathMove>& moves,
+                           const Machine& machine, const Observer& observer);
 
 }  // namespace kontur::verify
