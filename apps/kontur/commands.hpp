@@ -11,7 +11,7 @@ enum ExitCode : int {
   exit_invalid_input = 1,///< the input (curve, program, machine, value) breaks a rule
   exit_usage = 2,        ///< the command line is wrong
   exit_internal = 3,     ///< a bug: please report it
-  exit_check_failed = 4, ///< `kontur run`: setpoints written, but the independent check found a limit exceeded
+  exit_check_failed = 4, ///< `kontur run` / `verify`: the independent check found a limit exceeded
 };
 
 /// `kontur spline FILE`: validate a curve, print its span polynomials, lengths, differences.
@@ -25,6 +25,9 @@ void register_conic_command(CLI::App& app, int& exit_code);
 
 /// `kontur run PROGRAM`: plan a part program on a machine and write its setpoints.
 void register_run_command(CLI::App& app, int& exit_code);
+
+/// `kontur verify PROGRAM SETPOINTS`: check a setpoint file against a program and a machine.
+void register_verify_command(CLI::App& app, int& exit_code);
 
 /// `kontur machine [FILE]`: validate a machine file and print the limits in use.
 void register_machine_command(CLI::App& app, int& exit_code);

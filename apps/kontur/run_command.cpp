@@ -3,6 +3,7 @@
 // setpoints go to a CSV or binary file (or stdout), and a JSON summary checks them independently.
 #include "commands.hpp"
 #include "time_optimal_summary.hpp"
+#include "check_summary.hpp"
 #include "report_output.hpp"
 #include "run_report.hpp"
 
@@ -162,48 +163,9 @@ bool run_program(const RunOptions& o) {
                       fmt::format("setpoint {} of {}", m.index, n));
   });
   progress.clear();
-  nlohmann::ordered_json j;
-  j["program"] = o.program;
-  j["machine"] = machine.source;
-  j["servo_period_s"] = machine.servo_period_s;
-  j["setpoints"] = r.samples;
-  j["total_time_s"] = samples.empty() ? 0.0 : samples.back().t_s;
-  j["moves"] = moves.size();
+  nlohmann::ordered_json j =
+      check_summary(o.program, machine, r, run_moves, samples.empty() ? 0.0 : samples.back().t_s);
   if (o.time_optimal) add_time_optimal_summary(j, reference_moves, machine, j["total_time_s"].get<double>());
-  j["max_velocity_ratio"] = r.max_velocity_ratio;
-  j["max_acceleration_ratio"] = r.max_acceleration_ratio;
-  j["max_jerk_ratio"] = r.max_jerk_ratio;
-  j["max_path_error_mm"] = r.max_path_error_mm;
-  j["max_chord_error_mm"] = r.max_chord_error_mm;
-  j["chord_tolerance_mm"] = machine.chord_tolerance_mm;
-  j["end_error_mm"] = r.end_error_mm;
-  j["passed"] = r.passed(machine);
-  j["failures"] = r.failures(machine);
-  // Per block (docs/setpoints.md): the setpoints the checker matched to it and their maxima.
-  auto blocks = nlohmann::ordered_json::array();
-  for (std::size_t i = 0; i < r.blocks.size(); ++i) {
-    const verify::BlockStats& b = r.blocks[i];
-    nlohmann::ordered_json e;
-    e["line"] = b.source_line;
-    e["type"] = run_moves[i].type;
-    e["length_mm"] = run_moves[i].length_mm;
-    e["feed_mm_s"] = run_moves[i].feed_mm_s;
-    e["setpoints"] = b.samples;
-    if (b.samples > 0) {
-      e["t_start_s"] = b.t_first_s;
-      e["t_end_s"] = b.t_last_s;
-    } else {
-      e["t_start_s"] = nullptr;
-      e["t_end_s"] = nullptr;
-    }
-    e["max_velocity_ratio"] = b.max_velocity_ratio;
-    e["max_acceleration_ratio"] = b.max_acceleration_ratio;
-    e["max_jerk_ratio"] = b.max_jerk_ratio;
-    e["max_path_error_mm"] = b.max_path_error_mm;
-    e["max_chord_error_mm"] = b.max_chord_error_mm;
-    blocks.push_back(std::move(e));
-  }
-  j["blocks"] = std::move(blocks);
   if (builder) {
     const report::Report rep = builder->build(r, samples, o.program);
     std::vector<std::filesystem::path> report_inputs = inputs;

@@ -42,10 +42,12 @@ void SetpointWriter::write(const plan::Setpoint& s) {
     put<std::int64_t>(*out_, s.source_line);
     return;
   }
-  // -0 is written as 0 so that equal runs give equal bytes.
+  // -0 is written as 0 so that equal runs give equal bytes. Positions in the shortest form that
+  // reads back to the same double: a check of the file then sees the planner's jerk, not the
+  // rounding of the file (1e-9 mm would show as 8e-9 / T^3 = 8 mm/s^3 at T = 1 ms).
   auto z = [](double v) { return v == 0.0 ? 0.0 : v; };
   fmt::memory_buffer b;
-  fmt::format_to(std::back_inserter(b), "{:.9f},{:.9f},{:.9f},{:.9f},{:.6f},{}\n", z(s.t_s), z(s.position.x()),
+  fmt::format_to(std::back_inserter(b), "{:.9f},{},{},{},{:.6f},{}\n", z(s.t_s), z(s.position.x()),
                  z(s.position.y()), z(s.position.z()), z(s.v_mm_s), s.source_line);
   out_->write(b.data(), static_cast<std::streamsize>(b.size()));
 }

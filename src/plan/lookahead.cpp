@@ -210,6 +210,15 @@ PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s
   return best;
 }
 
+PathLimits path_limits_at(const PathGeometry& g, double cap_mm_s, const Machine& machine,
+                          double junction_jerk_share) noexcept {
+  PathLimits l = limits_at_cap(g, cap_mm_s, machine, junction_jerk_share);
+  if (!std::isfinite(l.max_acceleration) || !(l.max_acceleration > 0.0))
+    l.max_acceleration = machine.axes.front().max_acceleration;
+  if (!std::isfinite(l.max_jerk) || !(l.max_jerk > 0.0)) l.max_jerk = machine.axes.front().max_jerk;
+  return l;
+}
+
 PathLimits move_limits(const MoveGeometry& move, const Machine& machine, int samples) {
   const Curve& c = *move.curve;
   const std::vector<double> bp = c.breakpoints();

@@ -88,22 +88,14 @@ void MotionPlanner::push(const MoveInput& move) {
   if (!(length > 0.0)) return;
   const Curve& c = *move.curve;
   const std::vector<MovePiece> pieces = split_move(c, *table, move.feed_mm_s, machine_);
-  // The junction with the move before limits that move's end speed and jerk; it is still in the
-  // window (the window's last move is never released before the next one arrives or the
-  // program ends).
+  // The junction with the move before limits that move's end speed and sets its jerk; the move
+  // is still the window's last (never released before the next one arrives or the program ends).
   Junction in{std::numeric_limits<double>::infinity(), 0.0};
   if (last_end_ && !last_exact_stop_ && !pending_.empty()) {
     in = junction(*last_end_, c.derivatives(c.u_min(), 2), machine_);
-    Piece& prev = pending_.back();
-    MoveConstraint& mc = lookahead_.back();
-    mc.max_end_velocity = std::min(mc.max_end_velocity, in.velocity);
-    if (in.jerk_share > 0.0) {
-      const PathLimits l = path_limits(prev.geometry, mc.length_mm, prev.feed_mm_s, machine_,
-                                       std::max(prev.start_share, in.jerk_share));
-      mc.limits.max_acceleration = std::min(mc.limits.max_acceleration, l.max_acceleration);
-      mc.limits.max_jerk = std::min(mc.limits.max_jerk, l.max_jerk);
-    }
+    lookahead_.limit_last_end_velocity(in.velocity);
   }
+  settle_last(in.jerk_share);
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const MovePiece& p = pieces[i];
     const bool last = i + 1 == pieces.size();
@@ -124,8 +116,13 @@ void MotionPlanner::push(const MoveInput& move) {
     }
     MoveConstraint mc;
     mc.length_mm = p.s1_mm - p.s0_mm;
+    // The last piece's end junction is not known yet: it is planned with the largest share a
+    // junction may take, and raised (settle_last) when the next move arrives. Limits may only rise
+    // after moves before were released on them (they were planned to brake within the lower ones).
     mc.limits = path_limits(p.geometry, mc.length_mm, move.feed_mm_s, machine_,
-                            std::max(piece.start_share, last ? 0.0 : p.end.jerk_share));
+                            std::max({piece.start_share, last ? tolerances::plan_smooth_junction_jerk_share : 0.0,
+                                      last ? 0.0 : p.end.jerk_share}));
+    piece.cap_mm_s = mc.limits.max_velocity;
     mc.max_end_velocity = last ? (move.exact_stop ? 0.0 : mc.limits.max_velocity)
                                : std::min(mc.limits.max_velocity, p.end.velocity);
     pending_.push_back(std::move(piece));
@@ -134,6 +131,14 @@ void MotionPlanner::push(const MoveInput& move) {
   last_end_ = c.derivatives_left(c.u_max(), 2);
   last_exact_stop_ = move.exact_stop;
   release_ready();
+}
+
+void MotionPlanner::settle_last(double end_share) {
+  if (pending_.empty()) return;
+  const Piece& prev = pending_.back();
+  MoveConstraint& mc = lookahead_.back();
+  const PathLimits l = path_limits_at(prev.geometry, prev.cap_mm_s, machine_, std::max(prev.start_share, end_share));
+  mc.limits.max_jerk = std::max(mc.limits.max_jerk, l.max_jerk);
 }
 
 void MotionPlanner::dwell(double seconds, long source_line) {
@@ -147,10 +152,12 @@ void MotionPlanner::dwell(double seconds, long source_line) {
   p.hold_after_s += seconds;
   p.hold_line = source_line;
   lookahead_.limit_last_end_velocity(0.0);
+  settle_last(0.0);  // it ends at rest: no junction
   last_exact_stop_ = true;  // the next move starts from rest
 }
 
 void MotionPlanner::finish() {
+  if (!finished_) settle_last(0.0);  // the last move ends at rest
   finished_ = true;
   lookahead_.finish();
   release_ready();
@@ -196,7 +203,9 @@ bool MotionPlanner::next(Setpoint& out) noexcept {
       end_given_ = true;
       return true;
     }
+    // (t_move_ too: if the look-ahead makes us wait below, the next call goes on from here)
     t_move -= planned_.front().duration();
+    t_move_ -= planned_.front().duration();
     planned_.pop_front();
     u_ = planned_.front().u0;
     s_ = planned_.front().s0;

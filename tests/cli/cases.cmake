@@ -168,3 +168,17 @@ add_test(NAME cli_run_quiet_prints_nothing_to_stderr
          COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:kontur_app>;run;examples/programs/square_arc.ngc;-o;-;--quiet"
                  -DEXPECT_EXIT=0 "-DEXPECT_REGEX=^t,x,y,z,v,block\n" -DEMPTY_STDERR=ON
                  -DWORKDIR=${PROJECT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/run_case.cmake)
+
+# kontur verify: a setpoint file (written once by kontur run, kept as data: its check does not
+# depend on the planner), the same with one setpoint moved by 0.01 mm, and broken files.
+kontur_cli_case(verify_help 0 "Example" verify --help)
+kontur_cli_case(verify_setpoints_within_limits 0 "\"passed\": true" verify tests/data/setpoints/short_line.ngc
+                tests/data/setpoints/short_line.csv --summary -)
+kontur_cli_case(verify_bumped_setpoint_fails 4 "jerk of axis Y at [0-9.]+ times its limit.*0\\.00894 mm off the path" verify
+                tests/data/setpoints/short_line.ngc tests/data/setpoints/short_line_bumped.csv)
+kontur_cli_case(verify_bad_header 1 "bad_header\\.csv:1: the header is \"time,x,y,z\"" verify
+                tests/data/setpoints/short_line.ngc tests/data/setpoints/bad_header.csv)
+kontur_cli_case(verify_bad_row 1 "bad_row\\.csv:3: column 3 of \"0\\.001000000,0,zero,0,0\\.000000,3\" is not a number" verify
+                tests/data/setpoints/short_line.ngc tests/data/setpoints/bad_row.csv)
+kontur_cli_case(verify_missing_setpoints 1 "no-such\\.csv: cannot open the setpoint file" verify
+                tests/data/setpoints/short_line.ngc tests/data/setpoints/no-such.csv)

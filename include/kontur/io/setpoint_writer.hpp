@@ -22,7 +22,8 @@ enum class SetpointFormat { csv, binary };
 class SetpointWriter {
 public:
   SetpointWriter(std::ostream& out, SetpointFormat format, double period_s);
-  /// Writes one setpoint; positions in CSV with 9 decimals (1e-9 mm), t with 9, v with 6.
+  /// Writes one setpoint; in CSV, positions [mm] in the shortest form that reads back exactly, t [s]
+  /// with 9 decimals, v [mm/s] with 6.
   void write(const plan::Setpoint& s);
   /// Setpoints written.
   [[nodiscard]] long count() const noexcept { return count_; }

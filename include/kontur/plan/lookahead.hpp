@@ -95,6 +95,11 @@ struct PathGeometry {
 [[nodiscard]] PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s,
                                      const Machine& machine, double junction_jerk_share) noexcept;
 
+/// The path limits of a stretch at a given speed cap [mm/s] (as path_limits, without choosing the
+/// centripetal share): raising the junction share lowers only the jerk.
+[[nodiscard]] PathLimits path_limits_at(const PathGeometry& g, double cap_mm_s, const Machine& machine,
+                                        double junction_jerk_share) noexcept;
+
 /// Geometry of a move as the planner sees it: the curve, its length and the largest speed the
 /// program asks for.
 struct MoveGeometry {

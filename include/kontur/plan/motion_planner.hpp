@@ -78,10 +78,13 @@ private:
     PathGeometry geometry;
     double feed_mm_s = 0.0;
     double start_share = 0.0;
+    double cap_mm_s = 0.0;       // its speed cap [mm/s]
     ScurveProfile profile;       // final once released by the look-ahead
     [[nodiscard]] double duration() const noexcept { return hold_before_s + profile.duration() + hold_after_s; }
   };
   void release_ready();
+  // The end junction of the last move pushed is known (share of the jerk it takes): raise its jerk.
+  void settle_last(double end_share);
 
   Machine machine_;
   double period_;

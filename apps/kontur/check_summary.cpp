@@ -1,0 +1,51 @@
+#include "check_summary.hpp"
+
+namespace kontur::app {
+
+nlohmann::ordered_json check_summary(const std::string& program, const Machine& machine, const verify::Report& r,
+                                     const std::vector<RunMove>& run_moves, double total_time_s) {
+  nlohmann::ordered_json j;
+  j["program"] = program;
+  j["machine"] = machine.source;
+  j["servo_period_s"] = machine.servo_period_s;
+  j["setpoints"] = r.samples;
+  j["total_time_s"] = total_time_s;
+  j["moves"] = run_moves.size();
+  j["max_velocity_ratio"] = r.max_velocity_ratio;
+  j["max_acceleration_ratio"] = r.max_acceleration_ratio;
+  j["max_jerk_ratio"] = r.max_jerk_ratio;
+  j["max_path_error_mm"] = r.max_path_error_mm;
+  j["max_chord_error_mm"] = r.max_chord_error_mm;
+  j["chord_tolerance_mm"] = machine.chord_tolerance_mm;
+  j["end_error_mm"] = r.end_error_mm;
+  j["passed"] = r.passed(machine);
+  j["failures"] = r.failures(machine);
+  // Per block (docs/setpoints.md): the setpoints the checker matched to it and their maxima.
+  auto blocks = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < r.blocks.size(); ++i) {
+    const verify::BlockStats& b = r.blocks[i];
+    nlohmann::ordered_json e;
+    e["line"] = b.source_line;
+    e["type"] = run_moves[i].type;
+    e["length_mm"] = run_moves[i].length_mm;
+    e["feed_mm_s"] = run_moves[i].feed_mm_s;
+    e["setpoints"] = b.samples;
+    if (b.samples > 0) {
+      e["t_start_s"] = b.t_first_s;
+      e["t_end_s"] = b.t_last_s;
+    } else {
+      e["t_start_s"] = nullptr;
+      e["t_end_s"] = nullptr;
+    }
+    e["max_velocity_ratio"] = b.max_velocity_ratio;
+    e["max_acceleration_ratio"] = b.max_acceleration_ratio;
+    e["max_jerk_ratio"] = b.max_jerk_ratio;
+    e["max_path_error_mm"] = b.max_path_error_mm;
+    e["max_chord_error_mm"] = b.max_chord_error_mm;
+    blocks.push_back(std::move(e));
+  }
+  j["blocks"] = std::move(blocks);
+  return j;
+}
+
+}  // namespace kontur::app

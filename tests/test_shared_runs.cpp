@@ -1,0 +1,95 @@
+// Issue 5's proof on real programs: every program of ../shared/data/gcode that Kontur reads is
+// planned on LinuxCNC's trajectory-planner test machines (linuxcnc-tp/configs) and its setpoints
+// are checked independently (verify::check): no axis velocity, acceleration or jerk above its
+// limit by more than 1e-6 relative, every setpoint on the path (1e-6 mm) and every chord within the
+// chord tolerance, start and end reached (1e-9 mm), no NaN. The programs the reader stops on are
+// listed with their messages in test_gcode_shared_programs.cpp.
+#include <gtest/gtest.h>
+#include <kontur/error.hpp>
+#include <kontur/gcode/reader.hpp>
+#include <kontur/machine.hpp>
+#include <kontur/plan/motion_planner.hpp>
+#include <kontur/plan/program_moves.hpp>
+#include <kontur/verify/checker.hpp>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace kontur {
+namespace {
+
+const std::filesystem::path shared_dir = std::filesystem::path(KONTUR_SHARED_DIR) / "data" / "gcode";
+
+struct RunCase {
+  std::string program;  // relative to shared_dir
+  std::string machine;  // file name in linuxcnc-tp/configs
+};
+
+std::vector<RunCase> run_cases() {
+  std::vector<std::string> programs;
+  if (std::filesystem::is_directory(shared_dir))
+    for (const auto& e : std::filesystem::recursive_directory_iterator(shared_dir))
+      if (e.path().extension() == ".ngc")
+        programs.push_back(std::filesystem::relative(e.path(), shared_dir).generic_string());
+  std::sort(programs.begin(), programs.end());
+  std::vector<RunCase> cases;
+  for (const auto& p : programs) {
+    cases.push_back({p, "XYZ.ini"});
+    // The machine with different limits per axis, on the trajectory-planner programs.
+    if (p.rfind("linuxcnc-tp/", 0) == 0) cases.push_back({p, "XYZ_uneven.ini"});
+  }
+  return cases;
+}
+
+std::string case_name(const testing::TestParamInfo<RunCase>& info) {
+  std::string n = info.param.program + "_" + info.param.machine;
+  for (char& c : n)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return n;
+}
+
+class SharedProgramRun : public testing::TestWithParam<RunCase> {};
+
+TEST_P(SharedProgramRun, SetpointsKeepEveryLimitAndThePath) {
+  const RunCase& rc = GetParam();
+  const Machine machine = read_machine((shared_dir / "linuxcnc-tp" / "configs" / rc.machine).string());
+  plan::MotionPlanner planner(machine);
+  std::vector<std::shared_ptr<const Curve>> curves;
+  std::vector<verify::PathMove> moves;
+  std::vector<verify::Sample> samples;
+  plan::Setpoint sp;
+  auto drain = [&] {
+    while (planner.next(sp)) samples.push_back({sp.t_s, sp.position, sp.source_line});
+  };
+  try {
+    gcode::for_each_block((shared_dir / rc.program).string(), [&](const gcode::Block& b) {
+      const plan::MoveInput m = plan::move_input(b, machine);
+      if (!m.curve) {
+        if (b.type == gcode::BlockType::dwell) planner.dwell(b.dwell_s, b.location.line);
+      } else {
+        planner.push(m);
+        curves.push_back(m.curve);
+        moves.push_back({m.curve.get(), b.location.line});
+      }
+      drain();
+    });
+  } catch (const InputError& e) {
+    GTEST_SKIP() << "not read (see GcodeSharedPrograms): " << e.what();
+  }
+  planner.finish();
+  drain();
+  if (moves.empty()) GTEST_SKIP() << "no motion";
+  ASSERT_TRUE(planner.done());
+  const verify::Report r = verify::check(samples, moves, machine);
+  std::string failures;
+  for (const auto& f : r.failures(machine)) failures += "\n  " + f;
+  EXPECT_TRUE(r.passed(machine)) << rc.program << " on " << rc.machine << ":" << failures;
+  EXPECT_TRUE(r.finite);
+}
+
+INSTANTIATE_TEST_SUITE_P(Shared, SharedProgramRun, testing::ValuesIn(run_cases()), case_name);
+
+}  // namespace
+}  // namespace kontur
