@@ -72,6 +72,131 @@ TEST(Lookahead, StreamingEqualsWholeProgramPlanning) {
   }
 }
 
+// Streams `m` through a Lookahead as MotionPlanner does (push, then pop while ready) and checks
+// every profile against junction_velocities of the whole sequence; returns the largest window.
+std::size_t stream_and_compare(const std::vector<MoveConstraint>& m, Lookahead& la) {
+  const auto v = junction_velocities(m);
+  std::size_t popped = 0, largest = 0;
+  auto release = [&] {
+    while (la.ready()) {
+      const ScurveProfile p = la.pop();
+      EXPECT_NEAR(p.start_velocity(), v[popped], 1e-9 * 300) << "move " << popped;
+      EXPECT_NEAR(p.end_velocity(), v[popped + 1], 1e-9 * 300) << "move " << popped;
+      ++popped;
+    }
+  };
+  for (const MoveConstraint& c : m) {
+    la.push(c);
+    largest = std::max(largest, la.size());
+    release();
+  }
+  la.finish();
+  release();
+  EXPECT_EQ(popped, m.size());
+  EXPECT_EQ(la.size(), 0u);
+  return largest;
+}
+
+// Thousands of tiny moves (as linuxcnc-tp/performance/short_segments_0.001): braking spans
+// hundreds of them, so the window is long; the streaming plan still equals the whole plan, and
+// the look-ahead makes a bounded number of braking evaluations per move, not one per move of the
+// window (the cost was O(moves x window)).
+TEST(Lookahead, ManyTinyMovesStreamEqualsWholePlanWithBoundedEvaluationsPerPush) {
+  std::vector<MoveConstraint> m;
+  for (int i = 0; i < 3000; ++i) {
+    // 0.1 mm moves at up to 50 mm/s, a slower stretch and a stop in between.
+    const double cap = i >= 1200 && i < 1300 ? 20.0 : 50.0;
+    m.push_back(move(0.1, cap, i == 2000 ? 0.0 : 1e9, 1000, 1e5));
+  }
+  m.back().max_end_velocity = 0.0;
+  Lookahead la;
+  const std::size_t largest = stream_and_compare(m, la);
+  EXPECT_GT(largest, 100u);  // the window does span many moves
+  const double per_move = static_cast<double>(la.braking_evaluations()) / static_cast<double>(m.size());
+  EXPECT_LT(per_move, 30.0) << "largest window " << largest;
+}
+
+// The look-ahead as it was before its passes were cached: both backward passes over the whole
+// window for every ready(), and a full re-plan for every pop(). The cached one must give exactly
+// the same profiles.
+class ReplanningLookahead {
+public:
+  std::vector<MoveConstraint> window;
+  bool finished = false;
+
+  bool ready() const {
+    if (window.empty()) return false;
+    if (finished) return true;
+    return junction1(0.0) >= junction1(window.back().limits.max_velocity);
+  }
+  ScurveProfile pop() {
+    const std::size_t n = window.size();
+    std::vector<double> v(n + 1, 0.0);
+    v[0] = v_start_;
+    for (std::size_t i = 1; i < n; ++i) v[i] = cap(i);
+    for (std::size_t i = n; i-- > 1;) v[i] = std::min(v[i], braking_velocity(v[i + 1], window[i].length_mm, window[i].limits));
+    for (std::size_t i = 0; i < n; ++i)
+      v[i + 1] = std::min(v[i + 1], reachable_velocity(v[i], window[i].length_mm, window[i].limits));
+    ScurveProfile p = plan_scurve(window[0].length_mm, v_start_, v[1], window[0].limits);
+    v_start_ = p.end_velocity();
+    window.erase(window.begin());
+    return p;
+  }
+
+private:
+  double cap(std::size_t i) const {
+    return std::min({window[i - 1].max_end_velocity, window[i - 1].limits.max_velocity, window[i].limits.max_velocity});
+  }
+  double junction1(double v_end) const {
+    double v = v_end;
+    for (std::size_t i = window.size(); i-- > 1;)
+      v = std::min(cap(i), braking_velocity(v, window[i].length_mm, window[i].limits));
+    return v;
+  }
+  double v_start_ = 0.0;
+};
+
+TEST(Lookahead, SameProfilesAsReplanningTheWindowWhenTheLastMoveIsLoweredAfterPush) {
+  // MotionPlanner lowers the last move's end speed and limits (through back()) when the next one
+  // arrives; the cached passes must see it, and give bit for bit the profiles of re-planning the
+  // whole window each time.
+  std::mt19937_64 rng(testing::test_seed());
+  auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
+  for (int trial = 0; trial < 10; ++trial) {
+    Lookahead la;
+    ReplanningLookahead ref;
+    std::vector<ScurveProfile> got, want;
+    for (int i = 0; i < 600; ++i) {
+      // Mostly tiny moves, so that windows get long and readiness tests are deferred.
+      const double length = uni(0, 1) < 0.8 ? uni(0.01, 0.05) : std::exp(uni(std::log(0.05), std::log(5.0)));
+      const MoveConstraint c = move(length, uni(0, 1) < 0.7 ? 60.0 : uni(5, 200), 1e9, uni(200, 3000), uni(1e4, 1e6));
+      if (la.size() > 0) {
+        MoveConstraint& last = la.back();
+        last.max_end_velocity = std::min(last.max_end_velocity, uni(0, 1) < 0.05 ? 0.0 : uni(0, 300));
+        if (uni(0, 1) < 0.3) last.limits.max_acceleration *= uni(0.3, 1.0);
+        if (uni(0, 1) < 0.3) last.limits.max_jerk *= uni(0.3, 1.0);
+        ref.window.back() = last;
+      }
+      la.push(c);
+      ref.window.push_back(c);
+      while (la.ready()) got.push_back(la.pop());
+      while (ref.ready()) want.push_back(ref.pop());
+    }
+    la.limit_last_end_velocity(0.0);
+    ref.window.back().max_end_velocity = 0.0;
+    la.finish();
+    ref.finished = true;
+    while (la.ready()) got.push_back(la.pop());
+    while (ref.ready()) want.push_back(ref.pop());
+    ASSERT_EQ(got.size(), want.size());
+    for (std::size_t k = 0; k < got.size(); ++k) {
+      ASSERT_EQ(got[k].start_velocity(), want[k].start_velocity()) << "trial " << trial << " move " << k;
+      ASSERT_EQ(got[k].end_velocity(), want[k].end_velocity()) << "trial " << trial << " move " << k;
+      ASSERT_EQ(got[k].duration(), want[k].duration()) << "trial " << trial << " move " << k;
+    }
+  }
+}
+
 TEST(MoveLimits, LinesAlongAnAxisAndDiagonal) {
   Machine mc = default_machine();  // X Y Z: 200 mm/s, 2000 mm/s^2, 50000 mm/s^3
   const LineSegment x({0, 0, 0}, {100, 0, 0});

@@ -39,36 +39,138 @@ std::vector<double> plan_junctions(std::span<const MoveConstraint> moves, double
 
 std::vector<double> junction_velocities(std::span<const MoveConstraint> moves) { return plan_junctions(moves, 0.0, 0.0); }
 
-void Lookahead::push(const MoveConstraint& move) { window_.push_back(move); }
+double Lookahead::junction_cap(std::size_t i) const noexcept {
+  return std::min({window_[i - 1].max_end_velocity, window_[i - 1].limits.max_velocity, window_[i].limits.max_velocity});
+}
+
+double Lookahead::brake_at(std::size_t i, double v_after) const {
+  ++evaluations_;
+  return brake_from(v_after, window_[i]);
+}
+
+bool Lookahead::tail_changed_since_seen() const noexcept {
+  if (!tail_dirty_) return false;
+  tail_dirty_ = false;
+  const MoveConstraint& m = window_.back();
+  // back() may have been called without changing anything (a smooth junction).
+  return m.length_mm != tail_seen_.length_mm || m.max_end_velocity != tail_seen_.max_end_velocity ||
+         m.limits.max_velocity != tail_seen_.limits.max_velocity ||
+         m.limits.max_acceleration != tail_seen_.limits.max_acceleration ||
+         m.limits.max_jerk != tail_seen_.limits.max_jerk;
+}
+
+void Lookahead::update_going_on(std::size_t stop_from) const {
+  // going_on_[j] = min(cap_j, brake over move j to going_on_[j + 1]), going_on_[n] = the last
+  // move's cap: the same recurrence as the backward pass in plan_junctions. Once a recomputed
+  // value equals the cached one at a junction at or below stop_from (below it no junction's own
+  // inputs changed), nothing before it changes.
+  const std::size_t n = window_.size();
+  going_on_.resize(n + 1, 0.0);
+  going_on_[n] = window_.back().limits.max_velocity;
+  for (std::size_t i = n; i-- > 1;) {
+    const double v = std::min(junction_cap(i), brake_at(i, going_on_[i + 1]));
+    if (i <= stop_from && v == going_on_[i]) break;
+    going_on_[i] = v;
+  }
+  tail_seen_ = window_.back();
+  tail_dirty_ = false;
+}
+
+void Lookahead::refresh_tail() const {
+  // The last move's limits were lowered: its start junction and the end value change.
+  if (tail_changed_since_seen()) {
+    rest_valid_ = false;
+    update_going_on(window_.size() - 1);
+  }
+}
+
+void Lookahead::update_rest() const {
+  refresh_tail();
+  if (rest_valid_) return;
+  const std::size_t n = window_.size();
+  rest_.assign(n + 1, 0.0);
+  std::size_t i = n;
+  // From rest after the window until the pass meets the "going on" one (then they agree below).
+  for (; i-- > 1;) {
+    rest_[i] = std::min(junction_cap(i), brake_at(i, rest_[i + 1]));
+    if (rest_[i] == going_on_[i]) break;
+  }
+  for (; i-- > 1;) rest_[i] = going_on_[i];
+  rest_valid_ = true;
+}
+
+void Lookahead::push(const MoveConstraint& move) {
+  const std::size_t n_old = window_.size();
+  const bool tail_changed = n_old >= 1 && tail_changed_since_seen();
+  window_.push_back(move);
+  rest_valid_ = false;
+  if (skip_checks_ > 0) --skip_checks_;
+  if (n_old == 0) {
+    going_on_.assign(2, 0.0);
+    going_on_[1] = move.limits.max_velocity;
+    tail_seen_ = move;
+    return;
+  }
+  // The old end junction is recomputed in any case, and the old last move's start junction if
+  // its limits were lowered since.
+  update_going_on(tail_changed ? n_old - 1 : n_old);
+}
 
 bool Lookahead::ready() const {
   if (window_.empty()) return false;
-  if (finished_ || window_.size() >= max_window) return true;
+  if (!final_.empty() || finished_ || window_.size() >= max_window) return true;
+  if (skip_checks_ > 0) return false;
   // The oldest move is final when its end speed does not depend on what follows the window: the
   // backward pass gives the same speed at junction 1 whether the window ends at rest or the
   // motion goes on at the last move's cap. (Ending every move at zero acceleration makes braking
   // over many short moves far longer than one braking profile, so no distance rule suffices.)
-  auto junction1 = [&](double v_end) {
-    double v = v_end;
-    for (std::size_t i = window_.size(); i-- > 1;) {
-      const double cap = std::min({window_[i - 1].max_end_velocity, window_[i - 1].limits.max_velocity,
-                                   window_[i].limits.max_velocity});
-      v = std::min(cap, brake_from(v, window_[i]));
+  // Where the rest pass meets the cached "going on" pass, both agree at every junction before:
+  // those junctions are final.
+  refresh_tail();
+  const std::size_t n = window_.size();
+  double v = 0.0;  // the rest pass at junction i [mm/s]
+  std::size_t cost = 0;
+  for (std::size_t i = n; i >= 1; --i) {
+    if (i < n) {
+      v = std::min(junction_cap(i), brake_at(i, v));
+      ++cost;
     }
-    return v;
-  };
-  const double at_rest = junction1(0.0);
-  const double going_on = junction1(window_.back().limits.max_velocity);
-  return at_rest >= going_on;
+    if (v == going_on_[i] || (i == 1 && v >= going_on_[1])) {
+      for (std::size_t j = 1; j < i; ++j) final_.push_back(going_on_[j]);
+      final_.push_back(v);
+      break;
+    }
+  }
+  // A test that ran over many moves is not repeated for the next cost / check_defer_share pushes
+  // (whether it found final junctions or not): O(check_defer_share) evaluations per push.
+  skip_checks_ = cost > check_defer_min ? cost / check_defer_share : 0;
+  return !final_.empty();
 }
 
 ScurveProfile Lookahead::pop() {
-  const std::vector<MoveConstraint> w(window_.begin(), window_.end());
-  // From where the previous move ended, to rest after the window (final by ready()).
-  const std::vector<double> v = plan_junctions(w, v_start_, 0.0);
-  ScurveProfile p = plan_scurve(w[0].length_mm, v_start_, v[1], w[0].limits);
+  // From where the previous move ended, to a final junction speed, or to rest after the window.
+  double v1 = 0.0;
+  if (!final_.empty()) {
+    v1 = final_.front();
+    final_.pop_front();
+  } else {
+    update_rest();
+    v1 = rest_[1];
+  }
+  const MoveConstraint& m = window_.front();
+  // The forward pass of plan_junctions at junction 1.
+  v1 = std::min(v1, reachable_velocity(v_start_, m.length_mm, m.limits));
+  ScurveProfile p = plan_scurve(m.length_mm, v_start_, v1, m.limits);
   v_start_ = p.end_velocity();
   window_.pop_front();
+  going_on_.pop_front();
+  if (rest_valid_) rest_.pop_front();
+  if (window_.empty()) {
+    going_on_.clear();
+    rest_.clear();
+    rest_valid_ = false;
+    final_.clear();
+  }
   return p;
 }
 
