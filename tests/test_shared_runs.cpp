@@ -8,10 +8,12 @@
 #include <kontur/error.hpp>
 #include <kontur/gcode/reader.hpp>
 #include <kontur/machine.hpp>
+#include <kontur/plan/corner_blend.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/plan/program_moves.hpp>
 #include <kontur/verify/checker.hpp>
 
+#include <deque>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -64,28 +66,45 @@ TEST_P(SharedProgramRun, SetpointsKeepEveryLimitAndThePath) {
   Machine machine = read_machine((shared_dir / "linuxcnc-tp" / "configs" / rc.machine).string());
   if (rc.servo_period_s > 0.0) machine.servo_period_s = rc.servo_period_s;
   plan::MotionPlanner planner(machine);
+  plan::CornerBlender blender(true, &machine);  // corners between lines blended within the G64 tolerance, as kontur run does
+  std::vector<plan::BlendedMove> ready;
   std::vector<std::shared_ptr<const Curve>> curves;
+  std::deque<verify::ProgrammedCorner> corners;
   std::vector<verify::PathMove> moves;
   std::vector<verify::Sample> samples;
   plan::Setpoint sp;
   auto drain = [&] {
     while (planner.next(sp)) samples.push_back({sp.t_s, sp.position, sp.source_line});
   };
+  auto plan_ready = [&] {
+    for (const plan::BlendedMove& bm : ready) {
+      planner.push(bm.move);
+      curves.push_back(bm.move.curve);
+      const verify::ProgrammedCorner* corner = nullptr;
+      if (bm.blend) corner = &corners.emplace_back(verify::ProgrammedCorner{bm.before, bm.corner, bm.after, bm.tolerance_mm});
+      moves.push_back({bm.move.curve.get(), bm.move.source_line, corner});
+    }
+    ready.clear();
+    drain();
+  };
   try {
     gcode::for_each_block((shared_dir / rc.program).string(), [&](const gcode::Block& b) {
       const plan::MoveInput m = plan::move_input(b, machine);
       if (!m.curve) {
+        blender.flush(ready);
+        plan_ready();
         if (b.type == gcode::BlockType::dwell) planner.dwell(b.dwell_s, b.location.line);
       } else {
-        planner.push(m);
-        curves.push_back(m.curve);
-        moves.push_back({m.curve.get(), b.location.line});
+        blender.push(m, plan::corner_tolerance(b, machine), 0, ready);
+        plan_ready();
       }
       drain();
     });
   } catch (const InputError& e) {
     GTEST_SKIP() << "not read (see GcodeSharedPrograms): " << e.what();
   }
+  blender.flush(ready);
+  plan_ready();
   planner.finish();
   drain();
   if (moves.empty()) GTEST_SKIP() << "no motion";

@@ -18,6 +18,9 @@ nlohmann::ordered_json check_summary(const std::string& program, const Machine& 
   j["max_chord_error_mm"] = r.max_chord_error_mm;
   j["chord_tolerance_mm"] = machine.chord_tolerance_mm;
   j["end_error_mm"] = r.end_error_mm;
+  j["blends"] = r.blends;
+  j["max_blend_deviation_mm"] = r.max_blend_deviation_mm;
+  j["blend_tolerance_mm"] = r.blend_tolerance_mm;
   j["passed"] = r.passed(machine);
   j["failures"] = r.failures(machine);
   // Per block (docs/setpoints.md): the setpoints the checker matched to it and their maxima.

@@ -13,6 +13,7 @@
 #include <kontur/io/setpoint_writer.hpp>
 #include <kontur/length.hpp>
 #include <kontur/machine.hpp>
+#include <kontur/plan/corner_blend.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/plan/program_moves.hpp>
 #include <kontur/verify/checker.hpp>
@@ -25,6 +26,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -42,6 +44,7 @@ struct RunOptions {
   bool time_optimal = false;
   std::string report;
   bool quiet = false;
+  bool no_blend = false;
 };
 
 // A progress bar on stderr for runs longer than a second, only when stderr is a terminal (and
@@ -115,7 +118,17 @@ bool run_program(const RunOptions& o) {
   std::vector<std::shared_ptr<const Curve>> curves;  // kept for the check
   std::vector<verify::PathMove> moves;
   std::vector<verify::Sample> samples;
-  std::vector<plan::TimeOptimalMove> reference_moves;  // for --time-optimal
+  std::vector<plan::TimeOptimalMove> reference_moves;  // for --time-optimal (the blended path)
+  std::deque<verify::ProgrammedCorner> corners;         // of the blends, for the check
+  plan::CornerBlender blender(!o.no_blend, &machine);
+  std::vector<plan::BlendedMove> ready;
+  // Per block (the blender's tag): its type, length and curve (a move that is not trimmed keeps it).
+  struct BlockInfo {
+    const char* type;
+    double length_mm;
+    const Curve* curve;
+  };
+  std::vector<BlockInfo> block_info;
   auto produce = [&](std::ostream& out) {
     SetpointWriter writer(out, format, machine.servo_period_s);
     plan::Setpoint sp;
@@ -125,25 +138,43 @@ bool run_program(const RunOptions& o) {
         samples.push_back({sp.t_s, sp.position, sp.source_line});
       }
     };
+    // The moves the blender handed on: planned, and kept for the check.
+    auto plan_ready = [&] {
+      for (const plan::BlendedMove& bm : ready) {
+        const auto& curve = bm.move.curve;
+        planner.push(bm.move);
+        curves.push_back(curve);
+        const verify::ProgrammedCorner* corner = nullptr;
+        if (bm.blend) corner = &corners.emplace_back(verify::ProgrammedCorner{bm.before, bm.corner, bm.after, bm.tolerance_mm});
+        moves.push_back({curve.get(), bm.move.source_line, corner});
+        reference_moves.push_back({curve.get(), bm.move.feed_mm_s, bm.move.exact_stop});
+        const BlockInfo& info = block_info[bm.tag];
+        run_moves.push_back({bm.move.source_line, bm.blend ? "blend" : info.type,
+                             curve.get() == info.curve ? info.length_mm : length(*curve), bm.move.feed_mm_s});
+      }
+      ready.clear();
+      drain();
+    };
     gcode::for_each_block(o.program, [&](const gcode::Block& b) {
       const plan::MoveInput move = plan::move_input(b, machine);
       const auto& curve = move.curve;
       if (!curve) {  // a dwell: the motion stops and stays
+        blender.flush(ready);
+        plan_ready();
         if (b.type == gcode::BlockType::dwell) planner.dwell(b.dwell_s, b.location.line);
         drain();
         return;
       }
-      planner.push(move);
-      curves.push_back(curve);
-      moves.push_back({curve.get(), b.location.line});
-      reference_moves.push_back({curve.get(), move.feed_mm_s, move.exact_stop});
       const auto len = b.length_mm();
-      run_moves.push_back({b.location.line, gcode::to_string(b.type), len ? *len : length(*curve), move.feed_mm_s});
-      drain();
+      block_info.push_back({gcode::to_string(b.type), len ? *len : length(*curve), curve.get()});
+      blender.push(move, plan::corner_tolerance(b, machine), block_info.size() - 1, ready);
+      plan_ready();
       if (total_lines > 0)
         progress.update("planning", static_cast<double>(b.location.line) / static_cast<double>(total_lines),
                         fmt::format("line {} of {}", b.location.line, total_lines));
     });
+    blender.flush(ready);
+    plan_ready();
     planner.finish();
     drain();
   };
@@ -208,6 +239,8 @@ void register_run_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--time-optimal", o->time_optimal,
                 "add the time-optimal reference (acceleration-limited) and the ratio of the total time to it");
   cmd->add_flag("--quiet", o->quiet, "no progress bar and no summary on stderr (errors are still printed)");
+  cmd->add_flag("--no-blend", o->no_blend,
+                "do not blend corners between lines within the G64 tolerance (each corner is a junction)");
   cmd->footer("Example:\n  kontur run examples/programs/square_arc.ngc -o square_arc.csv --summary square_arc.json "
               "--report square_arc.html\n"
               "  kontur run examples/programs/square_arc.ngc -o - --quiet | head   (setpoints to stdout)\n"

@@ -161,4 +161,22 @@ inline constexpr double plan_limit_safety = 1e-4;
 /// Neighbouring spans of a curve whose speed caps are within this factor are planned as one piece.
 inline constexpr double plan_piece_cap_ratio = 1.5;
 
+// ---- corner blending within the G64 tolerance (plan/corner_blend.hpp)
+/// Lines shorter than this are not blended [mm] (their corners stay junctions): a blend on them
+/// would bend within a fraction of a micrometre.
+inline constexpr double blend_min_line_mm = 1e-4;
+/// Corners that turn by more than 120 degrees (cosine of the turn below this) are not blended:
+/// the blend would turn almost on the spot, and the motion nearly stops there anyway.
+inline constexpr double blend_min_turn_cos = -0.5;
+/// Largest share of each line a blend may trim: a line between two blended corners keeps at least
+/// 10 % of its length as a straight middle.
+inline constexpr double blend_max_trim_share = 0.45;
+/// Share of the tolerance a blend is made to use (the rest covers the sampling of its deviation).
+inline constexpr double blend_tolerance_share = 0.999;
+/// Samples of a blend (plus a golden-section search around the largest) when its largest distance
+/// from the programmed lines is measured, by the blender and independently by the checker.
+inline constexpr int blend_deviation_samples = 256;
+/// The checker accepts a blend whose deviation exceeds its tolerance by at most this, relative.
+inline constexpr double blend_deviation_relative = 1e-9;
+
 }  // namespace kontur::tolerances

@@ -1,9 +1,11 @@
+#include <kontur/tolerances.hpp>
 #include <kontur/verify/checker.hpp>
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace kontur::verify {
 namespace {
@@ -57,13 +59,58 @@ double project(const Curve& c, const std::vector<double>& bp, const Vec3& p, dou
   return (c.point(u_global) - p).squaredNorm() < d_local ? u_global : u_local;
 }
 
+// Distance from p to the segment [a, b] [mm].
+double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) noexcept {
+  const Vec3 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (p - a - t * ab).norm();
+}
+
 }  // namespace
+
+double corner_deviation(const Curve& c, const ProgrammedCorner& pc) {
+  auto dev = [&](double u) {
+    const Vec3 p = c.point(u);
+    return std::min(segment_distance(p, pc.before, pc.corner), segment_distance(p, pc.corner, pc.after));
+  };
+  const int n = tolerances::blend_deviation_samples;
+  const double u0 = c.u_min(), h = (c.u_max() - c.u_min()) / n;
+  double best = 0.0;
+  int best_k = 0;
+  for (int k = 0; k <= n; ++k) {
+    const double v = dev(u0 + h * k);
+    if (v > best) {
+      best = v;
+      best_k = k;
+    }
+  }
+  double lo = std::max(c.u_min(), u0 + h * (best_k - 1)), hi = std::min(c.u_max(), u0 + h * (best_k + 1));
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo), f1 = dev(x1), f2 = dev(x2);
+  for (int i = 0; i < 60; ++i) {
+    if (f1 < f2) {
+      lo = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = lo + g * (hi - lo);
+      f2 = dev(x2);
+    } else {
+      hi = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = hi - g * (hi - lo);
+      f1 = dev(x1);
+    }
+  }
+  return std::max({best, f1, f2});
+}
 
 bool Report::passed(const Machine& machine) const noexcept {
   return finite && uniform_time && max_velocity_ratio <= 1 + kRelative && max_acceleration_ratio <= 1 + kRelative &&
          max_jerk_ratio <= 1 + kRelative && max_path_error_mm <= 1e-6 &&
          max_chord_error_mm <= machine.chord_tolerance_mm * (1 + kRelative) && start_error_mm <= 1e-9 &&
-         end_error_mm <= 1e-9;
+         end_error_mm <= 1e-9 && max_blend_deviation_ratio <= 1 + tolerances::blend_deviation_relative;
 }
 
 std::vector<std::string> Report::failures(const Machine& machine) const {
@@ -82,6 +129,9 @@ std::vector<std::string> Report::failures(const Machine& machine) const {
                             machine.chord_tolerance_mm));
   if (start_error_mm > 1e-9) f.push_back(fmt::format("the first setpoint is {:.3g} mm from the start", start_error_mm));
   if (end_error_mm > 1e-9) f.push_back(fmt::format("the last setpoint is {:.3g} mm from the end", end_error_mm));
+  if (max_blend_deviation_ratio > 1 + tolerances::blend_deviation_relative)
+    f.push_back(fmt::format("a corner blend is {:.6g} mm from the programmed corner (tolerance {} mm)",
+                            max_blend_deviation_mm, blend_tolerance_mm));
   return f;
 }
 
@@ -108,6 +158,19 @@ Report check(const std::vector<Sample>& s, const std::vector<PathMove>& moves, c
   for (const AxisLimits& ax : machine.axes)
     if (const int i = linear_axis_index(ax.name); i >= 0) axes.push_back({&ax, i});
   r.blocks.resize(moves.size());
+  // Corner blends: each within the tolerance of the programmed lines it replaces.
+  for (const PathMove& pm : moves) {
+    if (pm.corner == nullptr) continue;
+    ++r.blends;
+    const double dev = corner_deviation(*pm.curve, *pm.corner);
+    const double ratio = pm.corner->tolerance_mm > 0.0 ? dev / pm.corner->tolerance_mm
+                                                       : (dev > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+    r.max_blend_deviation_mm = std::max(r.max_blend_deviation_mm, dev);
+    if (ratio >= r.max_blend_deviation_ratio) {
+      r.max_blend_deviation_ratio = ratio;
+      r.blend_tolerance_mm = pm.corner->tolerance_mm;
+    }
+  }
   for (std::size_t i = 0; i < moves.size(); ++i) r.blocks[i].source_line = moves[i].source_line;
   // Path: the start and end, each setpoint's distance from its move, each chord's bow.
   const Curve& first = *moves.front().curve;

@@ -12,10 +12,21 @@
 
 namespace kontur::verify {
 
-/// One programmed move as the checker sees it.
+/// The programmed corner a blend replaces: the lines before -> corner -> after of the program.
+struct ProgrammedCorner {
+  Vec3 before = Vec3::Zero();  ///< start of the incoming line [mm]
+  Vec3 corner = Vec3::Zero();  ///< the corner point [mm]
+  Vec3 after = Vec3::Zero();   ///< end of the outgoing line [mm]
+  double tolerance_mm = 0.0;   ///< the G64 tolerance the blend must keep [mm]
+};
+
+/// One move of the path as the checker sees it.
 struct PathMove {
-  const Curve* curve = nullptr;  ///< the programmed path
+  const Curve* curve = nullptr;  ///< the path run (a programmed move, a trimmed line or a corner blend)
   long source_line = 0;          ///< the line setpoints on it carry
+  /// A corner blend: the programmed corner it replaces (its largest distance from the two lines is
+  /// checked against the tolerance); nullptr for any other move.
+  const ProgrammedCorner* corner = nullptr;
 };
 
 /// A setpoint to check (as written by the planner: time, position, source line).
@@ -71,14 +82,24 @@ struct Report {
   double max_chord_error_mm = 0.0;     ///< largest distance of the path from a cycle's chord [mm]
   double start_error_mm = 0.0;         ///< distance of the first setpoint from the path's start [mm]
   double end_error_mm = 0.0;           ///< distance of the last setpoint from the path's end [mm]
+  long blends = 0;                     ///< corner blends among the moves
+  double max_blend_deviation_mm = 0.0; ///< largest distance of a blend from its programmed corner's lines [mm]
+  double blend_tolerance_mm = 0.0;     ///< the tolerance of the blend with the largest deviation / tolerance [mm]
+  double max_blend_deviation_ratio = 0.0;  ///< largest deviation / tolerance of a blend
   /// One per move, in the order of `moves` (empty when the check could not run: no setpoint,
   /// no move, or a setpoint not finite). Their maxima are the maxima above.
   std::vector<BlockStats> blocks;
-  /// True if every measure is within the machine's limits (1e-6 relative) and tolerances.
+  /// True if every measure is within the machine's limits (1e-6 relative) and tolerances (every
+  /// blend within its corner's tolerance, tolerances::blend_deviation_relative).
   [[nodiscard]] bool passed(const Machine& machine) const noexcept;
   /// What failed, one line each (empty if passed).
   [[nodiscard]] std::vector<std::string> failures(const Machine& machine) const;
 };
+
+/// Largest distance [mm] of `curve` from the union of the segments [before, corner] and
+/// [corner, after], sampled densely (tolerances::blend_deviation_samples per curve and a
+/// golden-section search around the largest sample).
+[[nodiscard]] double corner_deviation(const Curve& curve, const ProgrammedCorner& corner);
 
 /// Checks `samples` (in time order) against `machine` and the path `moves` (in order): each
 /// sample is matched to the next move with its source line (samples never go back), and among
