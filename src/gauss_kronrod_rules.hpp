@@ -184,6 +184,16 @@ struct PattersonRules {
           5.2290832457614024465e-2,
       }},
   }};
+  /// Companion of level 0 with the ends: weights of the 7-point interpolatory rule (degree 7)
+  /// on nodes[0], nodes[2 .. used[0] - 1] (each with its mirror; entry 1, the outermost
+  /// Gauss pair, is not used) and on -1 and 1 (the last entry, of each end).
+  static constexpr std::array<double, 5> gauss_companion_with_ends = {
+      4.912280860422376762e-1,
+      0.0,
+      3.6904282357710873797e-1,
+      3.0520527143593210845e-1,
+      8.0137861965840315483e-2,
+  };
 };
 
 }  // namespace kontur::detail

@@ -26,30 +26,47 @@ using Rules = detail::PattersonRules;
 // previous one estimates the previous (lower-order) value's error; the higher-order value is
 // returned, so the estimate bounds its error from above for the smooth speed of a span. The
 // estimate never goes below 50 machine epsilons of the integral of |f| (rounding of the sums).
-GkResult patterson_panel(const Curve& curve, double a, double b, double rel_tol, long& evaluations) noexcept {
-  const double centre = 0.5 * (a + b), half = 0.5 * (b - a);
-  std::array<double, Rules::nodes.size()> fsum{};  // f(c - h x) + f(c + h x); fsum[0] = f(c)
+// The values of |C'| at a panel's nodes so far: fsum[i] = f(c - h x_i) + f(c + h x_i) (fsum[0] =
+// f(c)), fabs_sum likewise of |f|; entries 0 .. filled - 1 are set.
+struct PanelValues {
+  std::array<double, Rules::nodes.size()> fsum{};
   std::array<double, Rules::nodes.size()> fabs_sum{};
-  fsum[0] = curve.speed(centre);
-  fabs_sum[0] = std::abs(fsum[0]);
-  evaluations += 1;
-  int filled = 1;
-  double previous = 0.0;
+  int filled = 0;
+};
+
+// Fills the nodes of [a, b] up to `used` entries.
+void fill_nodes(const Curve& curve, double a, double b, int used, PanelValues& pv, long& evaluations) noexcept {
+  const double centre = 0.5 * (a + b), half = 0.5 * (b - a);
+  if (pv.filled == 0) {
+    pv.fsum[0] = curve.speed(centre);
+    pv.fabs_sum[0] = std::abs(pv.fsum[0]);
+    evaluations += 1;
+    pv.filled = 1;
+  }
+  for (; pv.filled < used; ++pv.filled) {
+    const auto i = static_cast<std::size_t>(pv.filled);
+    const double dx = half * Rules::nodes[i];
+    const double f1 = curve.speed(centre - dx), f2 = curve.speed(centre + dx);
+    pv.fsum[i] = f1 + f2;
+    pv.fabs_sum[i] = std::abs(f1) + std::abs(f2);
+    evaluations += 2;
+  }
+}
+
+// The nested levels from `first_level` on (first_level >= 1 needs the value of the level before
+// it, `previous`, and its nodes in pv).
+GkResult patterson_levels(const Curve& curve, double a, double b, double rel_tol, long& evaluations,
+                          PanelValues& pv, int first_level, double previous) noexcept {
+  const double half = 0.5 * (b - a);
   GkResult r{0.0, 0.0, 0.0, 0, false};
-  for (int level = 0; level < Rules::levels; ++level) {
+  for (int level = first_level; level < Rules::levels; ++level) {
     const int used = Rules::used[static_cast<std::size_t>(level)];
-    for (; filled < used; ++filled) {
-      const double dx = half * Rules::nodes[static_cast<std::size_t>(filled)];
-      const double f1 = curve.speed(centre - dx), f2 = curve.speed(centre + dx);
-      fsum[static_cast<std::size_t>(filled)] = f1 + f2;
-      fabs_sum[static_cast<std::size_t>(filled)] = std::abs(f1) + std::abs(f2);
-      evaluations += 2;
-    }
+    fill_nodes(curve, a, b, used, pv, evaluations);
     const auto& w = Rules::weights[static_cast<std::size_t>(level)];
     double q = 0.0, qabs = 0.0;
     for (int i = 0; i < used; ++i) {
-      q += w[static_cast<std::size_t>(i)] * fsum[static_cast<std::size_t>(i)];
-      qabs += w[static_cast<std::size_t>(i)] * fabs_sum[static_cast<std::size_t>(i)];
+      q += w[static_cast<std::size_t>(i)] * pv.fsum[static_cast<std::size_t>(i)];
+      qabs += w[static_cast<std::size_t>(i)] * pv.fabs_sum[static_cast<std::size_t>(i)];
     }
     q *= half;
     qabs *= std::abs(half);
@@ -61,6 +78,36 @@ GkResult patterson_panel(const Curve& curve, double a, double b, double rel_tol,
     previous = q;
   }
   return r;
+}
+
+GkResult patterson_panel(const Curve& curve, double a, double b, double rel_tol, long& evaluations) noexcept {
+  PanelValues pv;
+  return patterson_levels(curve, a, b, rel_tol, evaluations, pv, 0, 0.0);
+}
+
+// Length [mm] of a short step [a, b] of one table interval, the speeds va, vb at its ends being
+// known: the 7-point Gauss rule (degree 13), accepted when its companion with the ends (degree 7,
+// the same inner values) agrees with it to tolerances::step_gauss_agreement; the companion's error
+// is of order h^8 against the Gauss rule's h^14, so the Gauss value is then exact to about the
+// square of that agreement. Otherwise the nested rules from 15 points on, reusing the 7 values,
+// up to the level where two agree to rel_tol.
+double step_length(const Curve& curve, double a, double b, double va, double vb, double rel_tol) noexcept {
+  PanelValues pv;
+  long unused = 0;
+  fill_nodes(curve, a, b, Rules::used[0], pv, unused);
+  const double half = 0.5 * (b - a);
+  const auto& w = Rules::weights[0];
+  const auto& c = Rules::gauss_companion_with_ends;
+  double gauss = 0.0, companion = c[static_cast<std::size_t>(Rules::used[0])] * (va + vb);
+  for (int i = 0; i < Rules::used[0]; ++i) {
+    gauss += w[static_cast<std::size_t>(i)] * pv.fsum[static_cast<std::size_t>(i)];
+    companion += c[static_cast<std::size_t>(i)] * pv.fsum[static_cast<std::size_t>(i)];
+  }
+  gauss *= half;
+  companion *= half;
+  // |C'| >= 0, so the value is also the scale of its rounding.
+  if (std::abs(gauss - companion) <= tolerances::step_gauss_agreement * std::abs(gauss)) return gauss;
+  return patterson_levels(curve, a, b, rel_tol, unused, pv, 1, gauss).value;
 }
 
 // The fixed rule of one level on [a, b] (used for partial table intervals).
@@ -271,28 +318,75 @@ double ArcLengthTable::u_after(double u_from, double s_from, double s_to, double
   const auto it = std::upper_bound(s_.begin(), s_.end(), s_to);
   const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(it - s_.begin()) - 1, u_.size() - 2);
   const double ua = u_[k], ub = u_[k + 1];
-  if (!(u_from >= ua && u_from < ub && s_from <= s_to)) return u_of_s(s_to, u_hint);
+  if (!(s_from <= s_to)) return u_of_s(s_to, u_hint);
+  if (u_from < ua && s_from <= s_[k] && u_from >= u_.front()) {
+    // The step ends in a later table interval: its part there starts at the interval's start,
+    // whose arc length the table holds (a shorter step of the same kind).
+    u_from = ua;
+    s_from = s_[k];
+  }
+  if (!(u_from >= ua && u_from < ub)) return u_of_s(s_to, u_hint);
+  const double ds = s_to - s_from;  // [mm]
+  if (!(ds > 0.0)) return u_from;
   // Newton on F(u) = s_from + length(u_from, u) - s_to, bracketed in [u_from, ub].
-  const double ds = s_to - s_from;
-  const double ftol = std::max(1e-12 * ds, tolerances::inverse_length_relative * 1e-2 * total);
+  // The residual is asked relative to the step, not to the curve: a residual of 1e-15 of a long
+  // curve can be 1e-8 of a 12.5 um step, and it shows as feed fluctuation.
+  const double ftol = tolerances::inverse_step_relative * ds;  // [mm]
   double lo = u_from, hi = ub;
-  double u = (u_hint > lo && u_hint < hi) ? u_hint : lo + (hi - lo) * std::min(1.0, ds / std::max(s_[k + 1] - s_from, 1e-300));
+  // Initial guess: the third-order Taylor series of u(s) at u_from, from v = |C'|, v' = dv/du and
+  // v'' = d2v/du2 [mm per parameter unit^1, ^2, ^3]: du/ds = 1/v, d2u/ds2 = -v'/v^3,
+  // d3u/ds3 = (3 v'^2 - v v'')/v^5. Its error is of order (ds/R)^4 of the step, R the length over
+  // which the parametric speed changes, so that one Newton step with a second-order correction
+  // usually suffices. The caller's hint (or the linear guess) where the series does not apply
+  // (v = 0 at a cusp, or a step too long for it).
+  double u = std::numeric_limits<double>::quiet_NaN();
+  double v_from = 0.0;
+  {
+    const Derivatives d = curve_->derivatives(u_from, 3);
+    const double v = d[1].norm();
+    v_from = v;
+    if (v > 0.0) {
+      const double vp = d[1].dot(d[2]) / v;
+      const double vpp = (d[2].dot(d[2]) + d[1].dot(d[3]) - vp * vp) / v;
+      const double t1 = ds / v;
+      const double t2 = -vp * ds * ds / (2.0 * v * v * v);
+      const double t3 = (3.0 * vp * vp - v * vpp) * ds * ds * ds / (6.0 * v * v * v * v * v);
+      if (std::abs(t2) <= 0.25 * t1 && std::abs(t3) <= 0.25 * t1) {
+        u = u_from + (t1 + t2 + t3);
+      }
+    }
+  }
+  if (!(u > lo && u < hi)) {
+    u = (u_hint > lo && u_hint < hi) ? u_hint : lo + (hi - lo) * std::min(1.0, ds / std::max(s_[k + 1] - s_from, 1e-300));
+  }
+  if (!(u > lo && u < hi)) u = 0.5 * (lo + hi);
   for (int i = 0; i < tolerances::inverse_length_max_iterations; ++i) {
-    // The nested rules on the step itself, up to the level where two agree (15 points on a
-    // smooth step, more near a cusp or a sharp turn).
-    long unused = 0;
-    const double f = patterson_panel(*curve_, u_from, u, 1e-13, unused).value - ds;
+    const Derivatives d = curve_->derivatives(u, 2);
+    const double v = d[1].norm();
+    const double f = step_length(*curve_, u_from, u, v_from, v, 1e-13) - ds;
     if (std::abs(f) <= ftol) break;
     if (f > 0.0) hi = u; else lo = u;
-    const double v = curve_->speed(u);
-    double next = (v > 0.0) ? u - f / v : 0.5 * (lo + hi);
+    double next = 0.5 * (lo + hi);
+    bool second_order = false;
+    if (v > 0.0) {
+      // s(u + du) - s_to = f + v du + v' du^2 / 2 + ...: du = -f/v - v' f^2/(2 v^3) + O(f^3).
+      const double t1 = f / v;
+      const double t2 = d[1].dot(d[2]) * f * f / (2.0 * v * v * v * v);
+      second_order = std::abs(t2) <= 0.5 * std::abs(t1);
+      next = u - t1 - (second_order ? t2 : 0.0);
+    }
     if (next == u) break;
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    const bool converging = std::abs(f) <= 1e-7 * ds && next > lo && next < hi;
+    const bool inside = next > lo && next < hi;
+    if (!inside) next = 0.5 * (lo + hi);
+    // The error after the step is of order (f/ds)^3 ds with the second-order term, (f/ds)^2 ds
+    // without it (times the relative change of the speed over the step, at most of order 1 on a
+    // step much shorter than the curve's features): below the thresholds it is far below ftol,
+    // so the result needs no further integral.
+    const double r = std::abs(f) / ds;
+    const bool converged = inside && (r <= tolerances::inverse_step_newton_stop ||
+                                      (second_order && r <= tolerances::inverse_step_second_order_stop));
     u = next;
-    // Newton's error after a step from |f| is of order (f / ds)^2 ds: from 1e-7 ds that is far
-    // below the tolerance, so the result needs no further integral.
-    if (converging || hi - lo <= 4.0 * kEps * std::max(std::abs(lo), std::abs(hi))) break;
+    if (converged || hi - lo <= 4.0 * kEps * std::max(std::abs(lo), std::abs(hi))) break;
   }
   return u;
 }

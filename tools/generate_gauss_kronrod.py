@@ -126,6 +126,25 @@ def main(out):
         lines += [f"          {fmt(x)}," for x in row]
         lines.append("      }},")
     lines.append("  }};")
+    # A lower-order companion of the 7-point Gauss rule: the interpolatory rule on its nodes
+    # without the outermost pair and on both ends (7 points, degree 7, positive weights). Its
+    # difference to the Gauss value estimates an error (of order h^8 against the Gauss rule's
+    # h^14) without a further evaluation inside, when the ends' values are known anyway
+    # (ArcLengthTable::u_after).
+    outer = order[1]
+    g = [x for x in order[:cum[0]] if x != outer]
+    ends = sorted(set([mp.mpf(-1), mp.mpf(1)] + g + [-x for x in g]))
+    w7 = weights(ends)
+    wmap7 = {mp.nstr(x, 50): wi for x, wi in zip(ends, w7)}
+    row7 = [mp.mpf(0) if x == outer else wmap7[mp.nstr(x, 50)] for x in order[:cum[0]]]
+    row7.append(wmap7[mp.nstr(mp.mpf(1), 50)])
+    assert all(wi > 0 for i, wi in enumerate(row7) if i != 1)
+    lines.append("  /// Companion of level 0 with the ends: weights of the 7-point interpolatory rule (degree 7)")
+    lines.append("  /// on nodes[0], nodes[2 .. used[0] - 1] (each with its mirror; entry 1, the outermost")
+    lines.append("  /// Gauss pair, is not used) and on -1 and 1 (the last entry, of each end).")
+    lines.append(f"  static constexpr std::array<double, {cum[0] + 1}> gauss_companion_with_ends = {{")
+    lines += [f"      {fmt(x)}," for x in row7]
+    lines.append("  };")
     lines.append("};")
     lines.append("")
     lines.append("}  // namespace kontur::detail")

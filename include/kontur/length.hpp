@@ -64,9 +64,13 @@ public:
   /// prediction, e.g. a Taylor step, saves iterations).
   [[nodiscard]] double u_of_s(double s_mm, double u_hint) const noexcept;
   /// Parameter at arc length s_to [mm], given a point (u_from, s_from) on the curve a short way
-  /// before it (s_from <= s_to): when both lie in one table interval, Newton integrates only the
-  /// step from u_from (nested Gauss-Kronrod-Patterson rules up to the level where two agree),
-  /// starting at `u_hint`; otherwise it is u_of_s(s_to, u_hint).
+  /// before it (s_from <= s_to): when both lie in one table interval (or u_from in an earlier
+  /// one: then the step starts at s_to's interval's start), Newton integrates only the step from
+  /// u_from, starting at the third-order Taylor series of u(s) at u_from: usually one 7-point
+  /// Gauss rule on the step (checked against a degree-7 companion that uses the step's ends;
+  /// the nested rules from 15 points on when they disagree) and one Newton step with its
+  /// second-order term. The residual is within tolerances::inverse_step_relative of the step.
+  /// `u_hint` is the start where the series does not apply; otherwise it is u_of_s(s_to, u_hint).
   /// The stepping of a servo cycle. Allocation-free.
   [[nodiscard]] double u_after(double u_from, double s_from, double s_to, double u_hint) const noexcept;
   /// Number of table intervals.

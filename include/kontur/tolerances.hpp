@@ -32,6 +32,20 @@ inline constexpr double inverse_length_relative = 1e-13;
 /// Largest number of Newton iterations of u(s); each falls back to bisection when it leaves the
 /// bracket, so the iteration always ends.
 inline constexpr int inverse_length_max_iterations = 60;
+/// ArcLengthTable::u_after (one servo cycle's step) accepts a residual of its step's length
+/// below this, relative to the step (a few ulps above the rounding of the step's integral).
+inline constexpr double inverse_step_relative = 1e-14;
+/// ArcLengthTable::u_after (one servo cycle's step): the 7-point Gauss length of the step is
+/// accepted when its degree-7 companion (the same inner nodes and the step's ends) agrees with it
+/// to this, relative; the Gauss value's own error (of order h^14 against h^8) is then of order
+/// (1e-9)^(14/8) ~ 2e-16 of the step.
+/// Otherwise the nested rules from 15 points on decide.
+inline constexpr double step_gauss_agreement = 1e-9;
+/// u_after stops after a Newton step from a residual below this, relative to the step: Newton's
+/// error is then of order 1e-14 of the step times the relative change of |C'| over it.
+inline constexpr double inverse_step_newton_stop = 1e-7;
+/// The same for a Newton step with its second-order term (error of order (1e-5)^3 of the step).
+inline constexpr double inverse_step_second_order_stop = 1e-5;
 
 // ---- forward differences (seed 002)
 /// Drift of the forward-difference stepper after 10^6 steps, relative to the curve's extent,
