@@ -10,6 +10,7 @@
 #include <kontur/gcode/reader.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/plan/motion_planner.hpp>
+#include <kontur/plan/program_moves.hpp>
 #include <kontur/plan/time_optimal.hpp>
 #include <kontur/span_polynomial.hpp>
 
@@ -31,29 +32,13 @@ struct Program {
   std::vector<plan::MoveInput> moves;
 };
 
+// The program's moves as `kontur run --no-blend` plans them (dwells left out: they add the same
+// time to both).
 Program read_program(const std::string& path, const Machine& machine) {
   Program p;
   gcode::for_each_block(path, [&](const gcode::Block& b) {
-    std::shared_ptr<const Curve> curve = std::visit(
-        [](const auto& g) -> std::shared_ptr<const Curve> {
-          using G = std::decay_t<decltype(g)>;
-          if constexpr (std::is_same_v<G, std::monostate>) {
-            return nullptr;
-          } else if constexpr (std::is_same_v<G, NurbsCurve>) {
-            return std::make_shared<SpanPolynomialCurve>(g);
-          } else {
-            return std::make_shared<G>(g);
-          }
-        },
-        b.geometry);
-    if (!curve) return;
-    double feed = b.type == gcode::BlockType::rapid ? machine.rapid_feed_mm_s : b.feed.value / 60.0;
-    if (b.feed.mode == gcode::FeedMode::inverse_time && b.type != gcode::BlockType::rapid) {
-      const auto len = b.length_mm();
-      feed = len && b.feed.duration_s() > 0.0 ? *len / b.feed.duration_s() : machine.max_feed_mm_s;
-    }
-    if (!(feed > 0.0)) feed = machine.max_feed_mm_s;
-    p.moves.push_back({curve, feed, b.modal.path_control != gcode::PathControl::blend, b.location.line});
+    plan::MoveInput m = plan::move_input(b, machine);
+    if (m.curve) p.moves.push_back(std::move(m));
   });
   return p;
 }
