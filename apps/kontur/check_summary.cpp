@@ -1,5 +1,9 @@
 #include "check_summary.hpp"
 
+#include <kontur/io/atomic_file.hpp>
+
+#include <iostream>
+
 namespace kontur::app {
 
 nlohmann::ordered_json check_summary(const std::string& program, const Machine& machine, const verify::Report& r,
@@ -49,6 +53,18 @@ nlohmann::ordered_json check_summary(const std::string& program, const Machine& 
   }
   j["blocks"] = std::move(blocks);
   return j;
+}
+
+void write_summary(const nlohmann::ordered_json& summary, const std::string& path, bool quiet,
+                   const std::vector<std::filesystem::path>& inputs) {
+  const std::string text = summary.dump(2) + "\n";
+  if (path.empty()) {
+    if (!quiet) std::cerr << text;
+  } else if (path == "-") {
+    std::cout << text;
+  } else {
+    write_file_atomically(path, [&](std::ostream& out) { out << text; }, inputs);
+  }
 }
 
 }  // namespace kontur::app

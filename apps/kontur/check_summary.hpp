@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -18,5 +19,10 @@ namespace kontur::app {
 [[nodiscard]] nlohmann::ordered_json check_summary(const std::string& program, const Machine& machine,
                                                    const verify::Report& report,
                                                    const std::vector<RunMove>& run_moves, double total_time_s);
+
+/// Writes the summary: to `path` atomically (never over one of `inputs`), to stdout for "-", or to
+/// stderr when no path is given (nothing with `quiet`).
+void write_summary(const nlohmann::ordered_json& summary, const std::string& path, bool quiet,
+                   const std::vector<std::filesystem::path>& inputs);
 
 }  // namespace kontur::app

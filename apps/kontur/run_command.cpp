@@ -108,6 +108,8 @@ bool run_program(const RunOptions& o) {
       if (o.output != "-") check_output_not_input(o.report, {o.output});
     }
   }
+  if (o.summary == "-" && (o.output == "-" || o.report == "-"))
+    throw CLI::ValidationError("--summary", "--summary - needs -o FILE and no --report -: stdout is taken");
   const Machine machine = o.machine.empty() ? default_machine() : read_machine(o.machine);
   if (o.machine.empty()) validate(machine);
   Progress progress(!o.quiet);
@@ -203,16 +205,7 @@ bool run_program(const RunOptions& o) {
     if (o.output != "-") report_inputs.emplace_back(o.output);
     report::write_html_report(rep, o.report, report_inputs, RunReportBuilder::render_options());
   }
-  const std::string text = j.dump(2) + "\n";
-  if (o.summary.empty()) {
-    if (!o.quiet) std::cerr << text;
-  } else if (o.summary == "-") {
-    if (o.output == "-" || o.report == "-")
-      throw CLI::ValidationError("--summary", "--summary - needs -o FILE and no --report -: stdout is taken");
-    std::cout << text;
-  } else {
-    write_file_atomically(o.summary, [&](std::ostream& out) { out << text; }, inputs);
-  }
+  write_summary(j, o.summary, o.quiet, inputs);
   return r.passed(machine);
 }
 

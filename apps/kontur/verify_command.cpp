@@ -104,14 +104,7 @@ bool verify_setpoints(const VerifyOptions& o) {
     const report::Report rep = builder->build(r, file.samples, o.program);
     report::write_html_report(rep, o.report, inputs, RunReportBuilder::render_options());
   }
-  const std::string text = j.dump(2) + "\n";
-  if (o.summary.empty()) {
-    if (!o.quiet) std::cerr << text;
-  } else if (o.summary == "-") {
-    std::cout << text;
-  } else {
-    write_file_atomically(o.summary, [&](std::ostream& out) { out << text; }, inputs);
-  }
+  write_summary(j, o.summary, o.quiet, inputs);
   return r.passed(machine);
 }
 

@@ -182,3 +182,6 @@ kontur_cli_case(verify_bad_row 1 "bad_row\\.csv:3: column 3 of \"0\\.001000000,0
                 tests/data/setpoints/short_line.ngc tests/data/setpoints/bad_row.csv)
 kontur_cli_case(verify_missing_setpoints 1 "no-such\\.csv: cannot open the setpoint file" verify
                 tests/data/setpoints/short_line.ngc tests/data/setpoints/no-such.csv)
+# Setpoints and summary cannot both go to stdout: refused before any work.
+kontur_cli_case(run_summary_stdout_needs_output_file 2 "--summary - needs -o FILE" run examples/programs/square_arc.ngc
+                --summary -)
