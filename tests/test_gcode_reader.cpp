@@ -487,5 +487,23 @@ TEST(GcodeReader, ErrorsNameLineColumnAndWord) {
             "test.ngc:3:1: G06.2: 9 knots given, 10 needed (6 control points + rank 4)");
 }
 
+// Regression: an arc whose end lies within the radius tolerance but off its circle (here 2.54 um,
+// from LinuxCNC's arc-arc-neartangent.ngc) ended on the circle, and the next move started 2.54 um
+// away: a jump of 33 times the jerk limit in one servo period. It is now a slight spiral that ends
+// exactly at the programmed point, with its radius going linearly from start to end.
+TEST(GcodeReader, ArcWithinTheRadiusToleranceEndsExactlyAtItsEndPoint) {
+  const auto blocks = read("G20 G90 G17\nG0 X.2 Y.1\nG2 X.2999 Y0 I0 J-.1 F10\nG1 X1\n");
+  ASSERT_EQ(blocks.size(), 3u);
+  const auto& arc = std::get<HelixArc>(blocks[1].geometry);
+  const Vec3 end(0.2999 * 25.4, 0.0, 0.0);
+  EXPECT_LE((arc.point(arc.u_max()) - end).norm(), 1e-12);
+  const Curve& next = *blocks[2].curve();
+  EXPECT_LE((arc.point(arc.u_max()) - next.point(next.u_min())).norm(), 1e-12);
+  EXPECT_NEAR(arc.radius_mm(), 0.1 * 25.4, 1e-12);
+  EXPECT_NEAR(arc.radius_change_mm(), -0.0001 * 25.4, 1e-12);
+  // The radius changes linearly with the angle: halfway, halfway between.
+  EXPECT_NEAR((arc.point(0.5) - arc.frame().centre).norm(), (0.1 - 0.00005) * 25.4, 1e-12);
+}
+
 }  // namespace
 }  // namespace kontur::gcode

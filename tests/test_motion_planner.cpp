@@ -166,5 +166,37 @@ TEST(MotionPlanner, StreamingGivesTheSameSetpointsAsPlanningAtOnce) {
   }
 }
 
+// A dwell (G4) stops the motion at the end of the moves before it and holds the position for its
+// time, with setpoints carrying the dwell's line; the move after it starts from rest.
+TEST(MotionPlanner, DwellHoldsThePositionForItsTime) {
+  const Machine m = default_machine();
+  MotionPlanner planner(m);
+  std::vector<Setpoint> pts;
+  Setpoint sp;
+  planner.push(line({0, 0, 0}, {10, 0, 0}, 100.0, 1));
+  planner.dwell(0.25, 2);
+  planner.push(line({10, 0, 0}, {10, 10, 0}, 100.0, 3));
+  planner.finish();
+  while (planner.next(sp)) pts.push_back(sp);
+  ASSERT_TRUE(planner.done());
+  std::size_t held = 0;
+  for (const auto& p : pts)
+    if (p.source_line == 2) {
+      ++held;
+      EXPECT_EQ(p.position, Vec3(10, 0, 0));
+      EXPECT_EQ(p.v_mm_s, 0.0);
+    }
+  // 0.25 s at 1 ms: 250 setpoints (one more or less where the stop falls between periods).
+  EXPECT_NEAR(static_cast<double>(held), 250.0, 1.0);
+  const RunResult no_dwell = run(m, {line({0, 0, 0}, {10, 0, 0}, 100.0, 1), line({10, 0, 0}, {10, 10, 0}, 100.0, 3)});
+  // The corner is a near stop either way (with the dwell the moves keep the corner's jerk share:
+  // a few ms faster), so the dwell adds its time.
+  EXPECT_NEAR(pts.back().t_s - no_dwell.points.back().t_s, 0.25, 0.01);
+  RunResult r;
+  r.points = pts;
+  const Usage u = usage(r, m);
+  EXPECT_LE(u.j, 1.0 + 1e-6);
+}
+
 }  // namespace
 }  // namespace kontur::plan
