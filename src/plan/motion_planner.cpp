@@ -227,9 +227,9 @@ bool MotionPlanner::next(Setpoint& out) noexcept {
   if (st.s >= m.profile.distance() || s_target >= m.s1) {
     u_ = m.u1;
   } else if (s_target > s_) {
-    const double speed = m.curve->speed(u_);
-    const double hint = speed > 0.0 ? u_ + (s_target - s_) / speed : u_;
-    u_ = m.table->u_after(u_, s_, s_target, std::clamp(hint, m.u0, m.u1));
+    // (u_after starts from the Taylor series of u(s) at u_; no hint needed: it falls back to the
+    // table interval's linear guess)
+    u_ = m.table->u_after(u_, s_, s_target, u_);
   }
   s_ = std::max(s_, s_target);
   t_move_ = t_move;
