@@ -8,7 +8,7 @@
 #include <kontur/error.hpp>
 #include <kontur/gcode/reader.hpp>
 #include <kontur/machine.hpp>
-#include <kontur/plan/corner_blend.hpp>
+#include <kontur/plan/program_path.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/plan/program_moves.hpp>
 #include <kontur/verify/checker.hpp>
@@ -66,47 +66,23 @@ TEST_P(SharedProgramRun, SetpointsKeepEveryLimitAndThePath) {
   Machine machine = read_machine((shared_dir / "linuxcnc-tp" / "configs" / rc.machine).string());
   if (rc.servo_period_s > 0.0) machine.servo_period_s = rc.servo_period_s;
   plan::MotionPlanner planner(machine);
-  plan::CornerBlender blender(true, &machine);  // corners between lines blended within the G64 tolerance, as kontur run does
-  std::vector<plan::BlendedMove> ready;
-  std::vector<std::shared_ptr<const Curve>> curves;
-  std::deque<verify::ProgrammedCorner> corners;
-  std::vector<verify::PathMove> moves;
+  plan::ProgramPath path(machine, true);  // corners between lines blended within the G64 tolerance, as kontur run does
   std::vector<verify::Sample> samples;
   plan::Setpoint sp;
-  auto drain = [&] {
+  plan::ProgramEvents events;
+  events.move = [&](const plan::MoveInput& m) { planner.push(m); };
+  events.dwell = [&](double seconds, long line) { planner.dwell(seconds, line); };
+  events.block = [&](const gcode::Block&) {
     while (planner.next(sp)) samples.push_back({sp.t_s, sp.position, sp.source_line});
   };
-  auto plan_ready = [&] {
-    for (const plan::BlendedMove& bm : ready) {
-      planner.push(bm.move);
-      curves.push_back(bm.move.curve);
-      const verify::ProgrammedCorner* corner = nullptr;
-      if (bm.blend) corner = &corners.emplace_back(verify::ProgrammedCorner{bm.before, bm.corner, bm.after, bm.tolerance_mm});
-      moves.push_back({bm.move.curve.get(), bm.move.source_line, corner});
-    }
-    ready.clear();
-    drain();
-  };
   try {
-    gcode::for_each_block((shared_dir / rc.program).string(), [&](const gcode::Block& b) {
-      const plan::MoveInput m = plan::move_input(b, machine);
-      if (!m.curve) {
-        blender.flush(ready);
-        plan_ready();
-        if (b.type == gcode::BlockType::dwell) planner.dwell(b.dwell_s, b.location.line);
-      } else {
-        blender.push(m, plan::corner_tolerance(b, machine), 0, ready);
-        plan_ready();
-      }
-      drain();
-    });
+    path.read((shared_dir / rc.program).string(), events);
   } catch (const InputError& e) {
     GTEST_SKIP() << "not read (see GcodeSharedPrograms): " << e.what();
   }
-  blender.flush(ready);
-  plan_ready();
   planner.finish();
-  drain();
+  while (planner.next(sp)) samples.push_back({sp.t_s, sp.position, sp.source_line});
+  const std::vector<verify::PathMove>& moves = path.check_moves();
   if (moves.empty()) GTEST_SKIP() << "no motion";
   ASSERT_TRUE(planner.done());
   const verify::Report r = verify::check(samples, moves, machine);

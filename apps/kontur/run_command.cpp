@@ -13,9 +13,8 @@
 #include <kontur/io/setpoint_writer.hpp>
 #include <kontur/length.hpp>
 #include <kontur/machine.hpp>
-#include <kontur/plan/corner_blend.hpp>
 #include <kontur/plan/motion_planner.hpp>
-#include <kontur/plan/program_moves.hpp>
+#include <kontur/plan/program_path.hpp>
 #include <kontur/verify/checker.hpp>
 
 #include <fmt/format.h>
@@ -114,23 +113,10 @@ bool run_program(const RunOptions& o) {
   if (o.machine.empty()) validate(machine);
   Progress progress(!o.quiet);
   const long total_lines = progress.enabled() ? count_lines(o.program) : 0;
-  std::vector<RunMove> run_moves;
   const SetpointFormat format = o.format == "binary" ? SetpointFormat::binary : SetpointFormat::csv;
   plan::MotionPlanner planner(machine);
-  std::vector<std::shared_ptr<const Curve>> curves;  // kept for the check
-  std::vector<verify::PathMove> moves;
+  plan::ProgramPath path(machine, !o.no_blend);  // the path planned, kept for the check
   std::vector<verify::Sample> samples;
-  std::vector<plan::TimeOptimalMove> reference_moves;  // for --time-optimal (the blended path)
-  std::deque<verify::ProgrammedCorner> corners;         // of the blends, for the check
-  plan::CornerBlender blender(!o.no_blend, &machine);
-  std::vector<plan::BlendedMove> ready;
-  // Per block (the blender's tag): its type, length and curve (a move that is not trimmed keeps it).
-  struct BlockInfo {
-    const char* type;
-    double length_mm;
-    const Curve* curve;
-  };
-  std::vector<BlockInfo> block_info;
   auto produce = [&](std::ostream& out) {
     SetpointWriter writer(out, format, machine.servo_period_s);
     plan::Setpoint sp;
@@ -140,43 +126,16 @@ bool run_program(const RunOptions& o) {
         samples.push_back({sp.t_s, sp.position, sp.source_line});
       }
     };
-    // The moves the blender handed on: planned, and kept for the check.
-    auto plan_ready = [&] {
-      for (const plan::BlendedMove& bm : ready) {
-        const auto& curve = bm.move.curve;
-        planner.push(bm.move);
-        curves.push_back(curve);
-        const verify::ProgrammedCorner* corner = nullptr;
-        if (bm.blend) corner = &corners.emplace_back(verify::ProgrammedCorner{bm.before, bm.corner, bm.after, bm.tolerance_mm});
-        moves.push_back({curve.get(), bm.move.source_line, corner});
-        reference_moves.push_back({curve.get(), bm.move.feed_mm_s, bm.move.exact_stop});
-        const BlockInfo& info = block_info[bm.tag];
-        run_moves.push_back({bm.move.source_line, bm.blend ? "blend" : info.type,
-                             curve.get() == info.curve ? info.length_mm : length(*curve), bm.move.feed_mm_s});
-      }
-      ready.clear();
+    plan::ProgramEvents events;
+    events.move = [&](const plan::MoveInput& m) { planner.push(m); };
+    events.dwell = [&](double seconds, long line) { planner.dwell(seconds, line); };
+    events.block = [&](const gcode::Block& b) {
       drain();
-    };
-    gcode::for_each_block(o.program, [&](const gcode::Block& b) {
-      const plan::MoveInput move = plan::move_input(b, machine);
-      const auto& curve = move.curve;
-      if (!curve) {  // a dwell: the motion stops and stays
-        blender.flush(ready);
-        plan_ready();
-        if (b.type == gcode::BlockType::dwell) planner.dwell(b.dwell_s, b.location.line);
-        drain();
-        return;
-      }
-      const auto len = b.length_mm();
-      block_info.push_back({gcode::to_string(b.type), len ? *len : length(*curve), curve.get()});
-      blender.push(move, plan::corner_tolerance(b, machine), block_info.size() - 1, ready);
-      plan_ready();
       if (total_lines > 0)
         progress.update("planning", static_cast<double>(b.location.line) / static_cast<double>(total_lines),
                         fmt::format("line {} of {}", b.location.line, total_lines));
-    });
-    blender.flush(ready);
-    plan_ready();
+    };
+    path.read(o.program, events);
     planner.finish();
     drain();
   };
@@ -187,9 +146,10 @@ bool run_program(const RunOptions& o) {
   }
   progress.clear();
   std::unique_ptr<RunReportBuilder> builder;
+  const std::vector<RunMove> run_moves = run_moves_of(path);
   if (!o.report.empty()) builder = std::make_unique<RunReportBuilder>(machine, run_moves);
   const std::size_t n = samples.size();
-  const verify::Report r = verify::check(samples, moves, machine, [&](const verify::SampleMeasure& m) {
+  const verify::Report r = verify::check(samples, path.check_moves(), machine, [&](const verify::SampleMeasure& m) {
     if (builder) builder->observe(m);
     if (progress.enabled() && (m.index & 1023) == 0)
       progress.update("checking", static_cast<double>(m.index) / static_cast<double>(n),
@@ -198,7 +158,12 @@ bool run_program(const RunOptions& o) {
   progress.clear();
   nlohmann::ordered_json j =
       check_summary(o.program, machine, r, run_moves, samples.empty() ? 0.0 : samples.back().t_s);
-  if (o.time_optimal) add_time_optimal_summary(j, reference_moves, machine, j["total_time_s"].get<double>());
+  if (o.time_optimal) {
+    std::vector<plan::TimeOptimalMove> reference_moves;  // along the blended path
+    for (const plan::PathEntry& e : path.entries())
+      reference_moves.push_back({e.move.curve.get(), e.move.feed_mm_s, e.move.exact_stop});
+    add_time_optimal_summary(j, reference_moves, machine, j["total_time_s"].get<double>());
+  }
   if (builder) {
     const report::Report rep = builder->build(r, samples, o.program);
     std::vector<std::filesystem::path> report_inputs = inputs;

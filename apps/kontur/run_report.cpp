@@ -68,6 +68,14 @@ std::string sci(double v) { return v == 0.0 ? std::string("0") : fmt::format("{:
 
 }  // namespace
 
+std::vector<RunMove> run_moves_of(const plan::ProgramPath& path) {
+  std::vector<RunMove> out;
+  out.reserve(path.entries().size());
+  for (const plan::PathEntry& e : path.entries())
+    out.push_back({e.move.source_line, e.type, e.length_mm, e.move.feed_mm_s});
+  return out;
+}
+
 RunReportBuilder::RunReportBuilder(const Machine& machine, std::vector<RunMove> moves)
     : machine_(machine),
       moves_(std::move(moves)),

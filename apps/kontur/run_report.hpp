@@ -3,6 +3,7 @@
 // its per-setpoint measures (verify::Observer), decimated on the way (report::StreamDecimator) so
 // that a run of millions of setpoints costs a bounded amount of memory here.
 #include <kontur/machine.hpp>
+#include <kontur/plan/program_path.hpp>
 #include <kontur/report/html_report.hpp>
 #include <kontur/verify/checker.hpp>
 #include <string>
@@ -17,6 +18,9 @@ struct RunMove {
   double length_mm = 0.0;  ///< [mm]
   double feed_mm_s = 0.0;  ///< the commanded feed [mm/s] (rapids: the machine's rapid feed)
 };
+
+/// The moves of a program's path as the summary and the report list them.
+[[nodiscard]] std::vector<RunMove> run_moves_of(const plan::ProgramPath& path);
 
 class RunReportBuilder {
  public:

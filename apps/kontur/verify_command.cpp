@@ -7,19 +7,15 @@
 #include "run_report.hpp"
 
 #include <kontur/error.hpp>
-#include <kontur/gcode/reader.hpp>
 #include <kontur/io/atomic_file.hpp>
 #include <kontur/io/setpoint_reader.hpp>
-#include <kontur/length.hpp>
 #include <kontur/machine.hpp>
-#include <kontur/plan/corner_blend.hpp>
-#include <kontur/plan/program_moves.hpp>
+#include <kontur/plan/program_path.hpp>
 #include <kontur/verify/checker.hpp>
 
 #include <fmt/format.h>
 
 #include <cmath>
-#include <deque>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -43,47 +39,12 @@ bool verify_setpoints(const VerifyOptions& o) {
   if (!o.report.empty()) check_output_not_input(o.report, inputs);
   const Machine machine = o.machine.empty() ? default_machine() : read_machine(o.machine);
   if (o.machine.empty()) validate(machine);
-  // The path, as `kontur run` builds it: the same corner blends (plan::CornerBlender), each checked
-  // against the programmed lines it replaces.
-  std::vector<std::shared_ptr<const Curve>> curves;
-  std::vector<verify::PathMove> moves;
-  std::vector<RunMove> run_moves;
-  std::deque<verify::ProgrammedCorner> corners;
-  plan::CornerBlender blender(!o.no_blend, &machine);
-  std::vector<plan::BlendedMove> ready;
-  struct BlockInfo {
-    const char* type;
-    double length_mm;
-    const Curve* curve;
-  };
-  std::vector<BlockInfo> block_info;
-  auto take_ready = [&] {
-    for (const plan::BlendedMove& bm : ready) {
-      const auto& curve = bm.move.curve;
-      curves.push_back(curve);
-      const verify::ProgrammedCorner* corner = nullptr;
-      if (bm.blend) corner = &corners.emplace_back(verify::ProgrammedCorner{bm.before, bm.corner, bm.after, bm.tolerance_mm});
-      moves.push_back({curve.get(), bm.move.source_line, corner});
-      const BlockInfo& info = block_info[bm.tag];
-      run_moves.push_back({bm.move.source_line, bm.blend ? "blend" : info.type,
-                           curve.get() == info.curve ? info.length_mm : length(*curve), bm.move.feed_mm_s});
-    }
-    ready.clear();
-  };
-  gcode::for_each_block(o.program, [&](const gcode::Block& b) {
-    const plan::MoveInput move = plan::move_input(b, machine);
-    if (!move.curve) {  // a dwell: no path, and no blend across it
-      blender.flush(ready);
-      take_ready();
-      return;
-    }
-    const auto len = b.length_mm();
-    block_info.push_back({gcode::to_string(b.type), len ? *len : length(*move.curve), move.curve.get()});
-    blender.push(move, plan::corner_tolerance(b, machine), block_info.size() - 1, ready);
-    take_ready();
-  });
-  blender.flush(ready);
-  take_ready();
+  // The path, as `kontur run` builds it: the same corner blends, each checked against the
+  // programmed lines it replaces.
+  plan::ProgramPath path(machine, !o.no_blend);
+  path.read(o.program, {});
+  const std::vector<verify::PathMove>& moves = path.check_moves();
+  const std::vector<RunMove> run_moves = run_moves_of(path);
   if (moves.empty())
     throw InputError("program-no-motion", fmt::format("{}: the program has no move to check setpoints against", o.program));
   const SetpointFile file = read_setpoints(o.setpoints);

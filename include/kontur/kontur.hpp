@@ -18,6 +18,7 @@
 #include <kontur/nurbs.hpp>
 #include <kontur/plan/lookahead.hpp>
 #include <kontur/plan/motion_planner.hpp>
+#include <kontur/plan/program_path.hpp>
 #include <kontur/plan/scurve.hpp>
 #include <kontur/span_polynomial.hpp>
 #include <kontur/tolerances.hpp>
