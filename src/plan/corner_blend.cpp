@@ -1,5 +1,6 @@
 #include <kontur/line_segment.hpp>
 #include <kontur/plan/corner_blend.hpp>
+#include <kontur/verify/checker.hpp>
 #include <kontur/plan/lookahead.hpp>
 #include <kontur/tolerances.hpp>
 
@@ -12,13 +13,6 @@ namespace kontur::plan {
 namespace {
 
 // Distance from p to the segment [a, b] [mm].
-double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) noexcept {
-  const Vec3 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (p - a - t * ab).norm();
-}
-
 // Is the blend (trim d [mm]) estimated to be faster than the corner's stop?
 bool worth_blending(const CornerBlendCurve& blend, double d, double feed_mm_s, const Machine& machine) {
   double jerk = std::numeric_limits<double>::infinity();  // smallest linear axis jerk [mm/s^3]
@@ -51,42 +45,9 @@ Derivatives CornerBlendCurve::derivatives(double u, int order) const noexcept {
 }
 
 double unit_blend_deviation(const Vec3& t1, const Vec3& t2) {
+  // The blend of trim 1 mm against the unit corner, measured as the checker measures every blend.
   const CornerBlendCurve c(Vec3::Zero(), t1, t2, 1.0);
-  const Vec3 before = -t1, after = t2;
-  auto dev = [&](double u) {
-    const Vec3 p = c.point(u);
-    return std::min(segment_distance(p, before, Vec3::Zero()), segment_distance(p, Vec3::Zero(), after));
-  };
-  const int n = tolerances::blend_deviation_samples;
-  double best = 0.0;
-  int best_k = 0;
-  for (int k = 0; k <= n; ++k) {
-    const double v = dev(static_cast<double>(k) / n);
-    if (v > best) {
-      best = v;
-      best_k = k;
-    }
-  }
-  // Golden section around the largest sample.
-  double lo = std::max(0.0, (best_k - 1.0) / n), hi = std::min(1.0, (best_k + 1.0) / n);
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo), f1 = dev(x1), f2 = dev(x2);
-  for (int i = 0; i < 60; ++i) {
-    if (f1 < f2) {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + g * (hi - lo);
-      f2 = dev(x2);
-    } else {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - g * (hi - lo);
-      f1 = dev(x1);
-    }
-  }
-  return std::max({best, f1, f2});
+  return verify::corner_deviation(c, {-t1, Vec3::Zero(), t2, 0.0});
 }
 
 double corner_tolerance(const gcode::Block& b, const Machine& machine) {
