@@ -32,20 +32,11 @@ constexpr std::array<double, 2> kPeriodsS{1e-3, 125e-6};  // servo periods [s]
 constexpr std::array<Interpolator, 3> kKinds{Interpolator::taylor_first_order, Interpolator::taylor_second_order,
                                               Interpolator::arc_length_exact};
 
-// A named set of curves (kept alive for the whole run).
-struct CurveSet {
-  std::string name;
-  std::vector<std::shared_ptr<const Curve>> curves;
-};
-
-std::shared_ptr<const Curve> spans_of(const NurbsCurve& c) { return std::make_shared<SpanPolynomialCurve>(c); }
+using bench::CurveSet;
+using bench::spans_of;
 
 std::vector<CurveSet> curve_sets() {
-  std::vector<CurveSet> sets;
-  for (int i = 1; i <= 2; ++i) {
-    const auto path = std::string(KONTUR_SOURCE_DIR) + "/examples/curves/seed_example" + std::to_string(i) + ".json";
-    sets.push_back({"seed_example" + std::to_string(i), {spans_of(read_curve_json(path))}});
-  }
+  std::vector<CurveSet> sets = bench::seed_curve_sets();
   // methods.md section 5: (x, y) -> (100 + x, 200 + 0.6 y, 300 + 0.8 y).
   const std::array<std::pair<const char*, std::array<Vec3, 5>>, 3> conics{{
       {"ellipse", {Vec3(105, 200, 300), Vec3(104, 201.08, 301.44), Vec3(103, 201.44, 301.92), Vec3(100, 201.8, 302.4),

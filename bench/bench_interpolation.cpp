@@ -36,19 +36,11 @@ constexpr double kStepMm = 6000.0 / 60.0 * 1e-3;  // ds = F T [mm]
 constexpr std::array<Interpolator, 3> kKinds{Interpolator::taylor_first_order, Interpolator::taylor_second_order,
                                               Interpolator::arc_length_exact};
 
-struct CurveSet {
-  std::string name;
-  std::vector<std::shared_ptr<const Curve>> curves;
-};
-
-std::shared_ptr<const Curve> spans_of(const NurbsCurve& c) { return std::make_shared<SpanPolynomialCurve>(c); }
+using bench::CurveSet;
+using bench::spans_of;
 
 std::vector<CurveSet> curve_sets() {
-  std::vector<CurveSet> sets;
-  for (int i = 1; i <= 2; ++i) {
-    const auto path = std::string(KONTUR_SOURCE_DIR) + "/examples/curves/seed_example" + std::to_string(i) + ".json";
-    sets.push_back({"seed_example" + std::to_string(i), {spans_of(read_curve_json(path))}});
-  }
+  std::vector<CurveSet> sets = bench::seed_curve_sets();
   testing::RandomCurveOptions o;
   o.min_degree = o.max_degree = 3;
   o.min_points = o.max_points = 43;

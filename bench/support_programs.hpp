@@ -2,6 +2,7 @@
 // Helpers of the benchmarks on real part programs (../shared/data/gcode, optional: callers skip
 // when it is absent) and of per-call timing (worst case, high percentiles, the clock's own cost).
 #include <kontur/gcode/reader.hpp>
+#include <kontur/io/curve_json.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/nurbs.hpp>
 #include <kontur/plan/motion_planner.hpp>
@@ -144,6 +145,25 @@ inline CallTimes clock_overhead() {
     return call_times(ns);
   }();
   return t;
+}
+
+/// A named set of curves (kept alive for the whole run).
+struct CurveSet {
+  std::string name;
+  std::vector<std::shared_ptr<const Curve>> curves;
+};
+
+/// A NURBS as the planner evaluates it (span polynomials).
+inline std::shared_ptr<const Curve> spans_of(const NurbsCurve& c) { return std::make_shared<SpanPolynomialCurve>(c); }
+
+/// The two seed curves of examples/curves, one set each.
+inline std::vector<CurveSet> seed_curve_sets() {
+  std::vector<CurveSet> sets;
+  for (int i = 1; i <= 2; ++i) {
+    const auto path = std::string(KONTUR_SOURCE_DIR) + "/examples/curves/seed_example" + std::to_string(i) + ".json";
+    sets.push_back({"seed_example" + std::to_string(i), {spans_of(read_curve_json(path))}});
+  }
+  return sets;
 }
 
 }  // namespace kontur::bench
