@@ -3,10 +3,10 @@
 // baseline measured in the same run. Per-step benchmarks also report the worst single step
 // ("worst_ns", timed with steady_clock, which adds its own ~20 ns).
 #include <benchmark/benchmark.h>
-#include <kontur/arc_motion.hpp>
-#include <kontur/circle_through_points.hpp>
-#include <kontur/conic_through_points.hpp>
-#include <kontur/length.hpp>
+#include <kontur/interpolate/arc_motion.hpp>
+#include <kontur/geometry/circle_through_points.hpp>
+#include <kontur/geometry/conic_through_points.hpp>
+#include <kontur/geometry/length.hpp>
 
 #include <array>
 #include <chrono>

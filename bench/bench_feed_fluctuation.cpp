@@ -8,11 +8,11 @@
 // of them) and the ellipse, parabola and hyperbola of methods.md section 5.
 // The time column is the measurement's cost, not the interpolator's (see bench_interpolation).
 #include <benchmark/benchmark.h>
-#include <kontur/conic_through_points.hpp>
+#include <kontur/geometry/conic_through_points.hpp>
 #include <kontur/error.hpp>
-#include <kontur/interpolation.hpp>
+#include <kontur/interpolate/curve_interpolator.hpp>
 #include <kontur/io/curve_json.hpp>
-#include <kontur/span_polynomial.hpp>
+#include <kontur/geometry/span_polynomial.hpp>
 
 #include "support_programs.hpp"
 

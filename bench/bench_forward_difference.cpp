@@ -2,8 +2,8 @@
 // the same points: Kontur's NURBS basis-function algorithm, Horner on the span polynomials, and
 // OpenCASCADE's Geom_BSplineCurve::D0. A cubic B-spline of 40 spans, 10^5 setpoints per pass.
 #include <benchmark/benchmark.h>
-#include <kontur/forward_difference.hpp>
-#include <kontur/nurbs.hpp>
+#include <kontur/interpolate/forward_difference.hpp>
+#include <kontur/geometry/nurbs.hpp>
 
 #include "support/occt_oracle.hpp"
 #include "support/random_curves.hpp"

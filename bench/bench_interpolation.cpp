@@ -12,11 +12,11 @@
 //   ns_max_raw the slowest single call seen at all (preemption included: the OS, not Kontur)
 //   clock_p50  the cost of timing an empty call in this process [ns] (subtract it from ns_p50)
 #include <benchmark/benchmark.h>
-#include <kontur/conic_through_points.hpp>
+#include <kontur/geometry/conic_through_points.hpp>
 #include <kontur/error.hpp>
-#include <kontur/interpolation.hpp>
+#include <kontur/interpolate/curve_interpolator.hpp>
 #include <kontur/io/curve_json.hpp>
-#include <kontur/span_polynomial.hpp>
+#include <kontur/geometry/span_polynomial.hpp>
 
 #include "support/random_curves.hpp"
 #include "support_programs.hpp"

@@ -4,9 +4,9 @@
 // error against a reference (the seeds' true lengths; for the random set Kontur's Gauss-Kronrod
 // at 1e-15, cross-checked against OpenCASCADE at 1e-15 when the set is built).
 #include <benchmark/benchmark.h>
-#include <kontur/length.hpp>
-#include <kontur/nurbs.hpp>
-#include <kontur/span_polynomial.hpp>
+#include <kontur/geometry/length.hpp>
+#include <kontur/geometry/nurbs.hpp>
+#include <kontur/geometry/span_polynomial.hpp>
 
 #include "support/occt_oracle.hpp"
 #include "support/random_curves.hpp"

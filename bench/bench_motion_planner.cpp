@@ -18,10 +18,10 @@
 #include <benchmark/benchmark.h>
 #include <kontur/error.hpp>
 #include <kontur/gcode/reader.hpp>
-#include <kontur/line_segment.hpp>
+#include <kontur/geometry/line_segment.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/plan/program_moves.hpp>
-#include <kontur/span_polynomial.hpp>
+#include <kontur/geometry/span_polynomial.hpp>
 
 #include "support/seed_curves.hpp"
 #include "support_programs.hpp"

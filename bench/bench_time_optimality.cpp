@@ -12,7 +12,7 @@
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/plan/program_moves.hpp>
 #include <kontur/plan/time_optimal.hpp>
-#include <kontur/span_polynomial.hpp>
+#include <kontur/geometry/span_polynomial.hpp>
 
 #include <cmath>
 #include <filesystem>

@@ -4,10 +4,10 @@
 #include <kontur/gcode/reader.hpp>
 #include <kontur/io/curve_json.hpp>
 #include <kontur/machine.hpp>
-#include <kontur/nurbs.hpp>
+#include <kontur/geometry/nurbs.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/plan/program_moves.hpp>
-#include <kontur/span_polynomial.hpp>
+#include <kontur/geometry/span_polynomial.hpp>
 
 #include <algorithm>
 #include <chrono>

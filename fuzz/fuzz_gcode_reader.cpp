@@ -3,8 +3,8 @@
 // Built with clang -fsanitize=fuzzer,address,undefined by fuzz/CMakeLists.txt (docs/gcode.md).
 #include <kontur/error.hpp>
 #include <kontur/gcode/reader.hpp>
-#include <kontur/length.hpp>
-#include <kontur/span_polynomial.hpp>
+#include <kontur/geometry/length.hpp>
+#include <kontur/geometry/span_polynomial.hpp>
 
 #include <cmath>
 #include <cstddef>

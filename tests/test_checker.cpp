@@ -1,8 +1,8 @@
 // The independent checker: planner output passes; a disturbed setpoint, a NaN or a jump is caught.
 #include <gtest/gtest.h>
-#include <kontur/helix_arc.hpp>
-#include <kontur/line_segment.hpp>
-#include <kontur/nurbs.hpp>
+#include <kontur/geometry/helix_arc.hpp>
+#include <kontur/geometry/line_segment.hpp>
+#include <kontur/geometry/nurbs.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/verify/checker.hpp>
 

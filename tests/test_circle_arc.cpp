@@ -1,10 +1,10 @@
 // Circle through three points (methods.md section 4, seed program ARC): the reference vectors to
 // their printed digits, the curve, both motion modes, random circles in space, and every bad input.
 #include <gtest/gtest.h>
-#include <kontur/arc_motion.hpp>
-#include <kontur/circle_through_points.hpp>
+#include <kontur/interpolate/arc_motion.hpp>
+#include <kontur/geometry/circle_through_points.hpp>
 #include <kontur/error.hpp>
-#include <kontur/length.hpp>
+#include <kontur/geometry/length.hpp>
 #include <kontur/machine_limits.hpp>
 
 #include "support/random_curves.hpp"

@@ -2,10 +2,10 @@
 // their printed digits, the length against elliptic integrals, seeded random conics of every type
 // in space, both motion modes and every bad input.
 #include <gtest/gtest.h>
-#include <kontur/arc_motion.hpp>
-#include <kontur/conic_through_points.hpp>
+#include <kontur/interpolate/arc_motion.hpp>
+#include <kontur/geometry/conic_through_points.hpp>
 #include <kontur/error.hpp>
-#include <kontur/length.hpp>
+#include <kontur/geometry/length.hpp>
 #include <kontur/tolerances.hpp>
 
 #include "support/random_curves.hpp"

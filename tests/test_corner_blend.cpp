@@ -2,7 +2,7 @@
 // tolerance of the programmed lines, curvature-continuous at both ends, none under exact stop,
 // lines between blends keep a straight middle, and a blended square passes the check faster.
 #include <gtest/gtest.h>
-#include <kontur/line_segment.hpp>
+#include <kontur/geometry/line_segment.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/plan/corner_blend.hpp>
 #include <kontur/plan/motion_planner.hpp>

@@ -1,9 +1,9 @@
 // Unit tangent, curvature and chord (bow-height) error.
 #include <gtest/gtest.h>
-#include <kontur/differential.hpp>
-#include <kontur/helix_arc.hpp>
-#include <kontur/line_segment.hpp>
-#include <kontur/nurbs.hpp>
+#include <kontur/geometry/differential.hpp>
+#include <kontur/geometry/helix_arc.hpp>
+#include <kontur/geometry/line_segment.hpp>
+#include <kontur/geometry/nurbs.hpp>
 
 #include <cmath>
 #include <limits>

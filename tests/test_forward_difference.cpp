@@ -1,8 +1,8 @@
 // Seed 002's lower level: forward differences reproduce the seed's initial differences, follow
 // the curve across span changes, and drift less than 1e-9 of the curve's extent in 10^6 steps.
 #include <gtest/gtest.h>
-#include <kontur/forward_difference.hpp>
-#include <kontur/nurbs.hpp>
+#include <kontur/interpolate/forward_difference.hpp>
+#include <kontur/geometry/nurbs.hpp>
 
 #include "support/random_curves.hpp"
 #include "support/seed_curves.hpp"

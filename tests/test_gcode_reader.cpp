@@ -5,7 +5,7 @@
 #include <kontur/error.hpp>
 #include <kontur/gcode/expression.hpp>
 #include <kontur/gcode/reader.hpp>
-#include <kontur/length.hpp>
+#include <kontur/geometry/length.hpp>
 
 #include <cmath>
 #include <cstdio>

@@ -1,10 +1,10 @@
 // Seed 004's interpolators (methods.md section 3) and Kontur's arc-length-exact one: feed
 // fluctuation, the chord-error feed limit, exact steps on a circle.
 #include <gtest/gtest.h>
-#include <kontur/helix_arc.hpp>
-#include <kontur/interpolation.hpp>
-#include <kontur/length.hpp>
-#include <kontur/span_polynomial.hpp>
+#include <kontur/geometry/helix_arc.hpp>
+#include <kontur/interpolate/curve_interpolator.hpp>
+#include <kontur/geometry/length.hpp>
+#include <kontur/geometry/span_polynomial.hpp>
 
 #include "support/random_curves.hpp"
 #include "support/seed_curves.hpp"

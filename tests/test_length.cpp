@@ -1,11 +1,11 @@
 // Curve length (methods.md section 2, seed 000): the seed's Simpson tables, the true lengths by
 // Kontur's default, agreement with OpenCASCADE, and the inverse u(s).
 #include <gtest/gtest.h>
-#include <kontur/helix_arc.hpp>
-#include <kontur/length.hpp>
-#include <kontur/line_segment.hpp>
-#include <kontur/nurbs.hpp>
-#include <kontur/span_polynomial.hpp>
+#include <kontur/geometry/helix_arc.hpp>
+#include <kontur/geometry/length.hpp>
+#include <kontur/geometry/line_segment.hpp>
+#include <kontur/geometry/nurbs.hpp>
+#include <kontur/geometry/span_polynomial.hpp>
 
 #include "support/occt_oracle.hpp"
 #include "support/random_curves.hpp"

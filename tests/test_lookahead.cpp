@@ -1,9 +1,9 @@
 // Look-ahead: junction speeds, streaming equals whole-program planning, and path limits from
 // geometry and the machine.
 #include <gtest/gtest.h>
-#include <kontur/helix_arc.hpp>
-#include <kontur/interpolation.hpp>
-#include <kontur/line_segment.hpp>
+#include <kontur/geometry/helix_arc.hpp>
+#include <kontur/interpolate/curve_interpolator.hpp>
+#include <kontur/geometry/line_segment.hpp>
 #include <kontur/plan/lookahead.hpp>
 
 #include "support/random_curves.hpp"

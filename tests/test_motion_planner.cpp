@@ -1,8 +1,8 @@
 // Moves to setpoints: the limits hold on the setpoints themselves (finite differences), the path
 // is continuous, corners are slow, tangent junctions are not, and the end is reached exactly.
 #include <gtest/gtest.h>
-#include <kontur/helix_arc.hpp>
-#include <kontur/line_segment.hpp>
+#include <kontur/geometry/helix_arc.hpp>
+#include <kontur/geometry/line_segment.hpp>
 #include <kontur/plan/motion_planner.hpp>
 
 #include <cmath>

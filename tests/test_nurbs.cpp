@@ -1,7 +1,7 @@
 // NURBS validation (every rule, with its message) and evaluation against OpenCASCADE.
 #include <gtest/gtest.h>
 #include <kontur/error.hpp>
-#include <kontur/nurbs.hpp>
+#include <kontur/geometry/nurbs.hpp>
 
 #include "support/occt_oracle.hpp"
 #include "support/random_curves.hpp"

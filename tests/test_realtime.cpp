@@ -1,11 +1,11 @@
 // The real-time contract: evaluation, stepping and u(s) allocate nothing (counted by replacing
 // the global operator new for this test binary).
 #include <gtest/gtest.h>
-#include <kontur/forward_difference.hpp>
-#include <kontur/interpolation.hpp>
-#include <kontur/length.hpp>
-#include <kontur/line_segment.hpp>
-#include <kontur/nurbs.hpp>
+#include <kontur/interpolate/forward_difference.hpp>
+#include <kontur/interpolate/curve_interpolator.hpp>
+#include <kontur/geometry/length.hpp>
+#include <kontur/geometry/line_segment.hpp>
+#include <kontur/geometry/nurbs.hpp>
 #include <kontur/plan/motion_planner.hpp>
 
 #include "support/random_curves.hpp"

@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <kontur/error.hpp>
-#include <kontur/helix_arc.hpp>
-#include <kontur/line_segment.hpp>
+#include <kontur/geometry/helix_arc.hpp>
+#include <kontur/geometry/line_segment.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/report/html_report.hpp>
 #include <kontur/verify/checker.hpp>

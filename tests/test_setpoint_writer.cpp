@@ -1,7 +1,7 @@
 // Setpoint sinks: CSV header and rows, the binary layout, byte-for-byte reproducibility.
 #include <gtest/gtest.h>
 #include <kontur/io/setpoint_writer.hpp>
-#include <kontur/line_segment.hpp>
+#include <kontur/geometry/line_segment.hpp>
 
 #include <cstring>
 #include <sstream>

@@ -1,7 +1,7 @@
 // Seed 002 (methods.md section 1): basis polynomials, Table 2, and conversion invariants.
 #include <gtest/gtest.h>
-#include <kontur/nurbs.hpp>
-#include <kontur/span_polynomial.hpp>
+#include <kontur/geometry/nurbs.hpp>
+#include <kontur/geometry/span_polynomial.hpp>
 
 #include "support/random_curves.hpp"
 #include "support/seed_curves.hpp"

@@ -4,10 +4,10 @@
 // faster than the reference (it is a lower bound).
 #include <gtest/gtest.h>
 #include <kontur/error.hpp>
-#include <kontur/helix_arc.hpp>
-#include <kontur/interpolation.hpp>
-#include <kontur/length.hpp>
-#include <kontur/line_segment.hpp>
+#include <kontur/geometry/helix_arc.hpp>
+#include <kontur/interpolate/curve_interpolator.hpp>
+#include <kontur/geometry/length.hpp>
+#include <kontur/geometry/line_segment.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/plan/time_optimal.hpp>
 #include <kontur/tolerances.hpp>

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Generates src/gauss_kronrod_rules.hpp: the nested Gauss-Kronrod-Patterson rules on [-1, 1].
+"""Generates src/geometry/gauss_kronrod_rules.hpp: the nested Gauss-Kronrod-Patterson rules on [-1, 1].
 
 Level 0 is the 7-point Gauss-Legendre rule; each further level adds the m + 1 zeros of the
 polynomial E orthogonal to pi(x) x^k (k = 0..m) on [-1, 1], where pi is the node polynomial of
@@ -153,4 +153,4 @@ def main(out):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else "src/gauss_kronrod_rules.hpp")
+    main(sys.argv[1] if len(sys.argv) > 1 else "src/geometry/gauss_kronrod_rules.hpp")

@@ -5,10 +5,10 @@
 #include "commands.hpp"
 #include "report_output.hpp"
 
-#include <kontur/arc_motion.hpp>
-#include <kontur/circle_through_points.hpp>
+#include <kontur/interpolate/arc_motion.hpp>
+#include <kontur/geometry/circle_through_points.hpp>
 #include <kontur/error.hpp>
-#include <kontur/length.hpp>
+#include <kontur/geometry/length.hpp>
 
 #include <fmt/format.h>
 

@@ -1,8 +1,8 @@
 #pragma once
 // Shared pieces of `kontur arc` and `kontur conic`: parsing points and limits, the options of
 // the motion, the step tables (text, CSV, JSON) and number formatting without NaN or "-0".
-#include <kontur/arc_motion.hpp>
-#include <kontur/curve.hpp>
+#include <kontur/interpolate/arc_motion.hpp>
+#include <kontur/geometry/curve.hpp>
 #include <kontur/machine_limits.hpp>
 
 #include <CLI/CLI.hpp>

@@ -1,8 +1,8 @@
 #pragma once
 // The HTML reports of `kontur spline`, `kontur arc` and `kontur conic` (docs/report.md): the
 // pieces they share, built on the library's report model (kontur/report/html_report.hpp).
-#include <kontur/arc_motion.hpp>
-#include <kontur/curve.hpp>
+#include <kontur/interpolate/arc_motion.hpp>
+#include <kontur/geometry/curve.hpp>
 #include <kontur/report/html_report.hpp>
 #include <optional>
 #include <string>

@@ -11,7 +11,7 @@
 #include <kontur/gcode/reader.hpp>
 #include <kontur/io/atomic_file.hpp>
 #include <kontur/io/setpoint_writer.hpp>
-#include <kontur/length.hpp>
+#include <kontur/geometry/length.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/plan/program_path.hpp>

@@ -5,11 +5,11 @@
 #include "report_output.hpp"
 
 #include <kontur/error.hpp>
-#include <kontur/forward_difference.hpp>
-#include <kontur/interpolation.hpp>
+#include <kontur/interpolate/forward_difference.hpp>
+#include <kontur/interpolate/curve_interpolator.hpp>
 #include <kontur/io/curve_json.hpp>
-#include <kontur/length.hpp>
-#include <kontur/span_polynomial.hpp>
+#include <kontur/geometry/length.hpp>
+#include <kontur/geometry/span_polynomial.hpp>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>

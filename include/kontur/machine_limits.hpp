@@ -1,7 +1,7 @@
 #pragma once
 // The working range of a machine's axes: a box in the machine frame. Points given by the user
 // and every computed setpoint must lie in it (the seed's programs check 1 <= x, y, z <= 5000).
-#include <kontur/curve.hpp>
+#include <kontur/geometry/curve.hpp>
 
 #include <string>
 

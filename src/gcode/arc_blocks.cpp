@@ -1,8 +1,8 @@
 // Circular blocks: G2 / G3 arcs and helices in a plane (I J K or R, P turns), the 3-D circle
 // through an intermediate point (Sinumerik CIP, Fanuc G02.4 / G03.4), and Kontur's CONIC block.
 #include "interpreter.hpp"
-#include <kontur/circle_through_points.hpp>
-#include <kontur/conic_through_points.hpp>
+#include <kontur/geometry/circle_through_points.hpp>
+#include <kontur/geometry/conic_through_points.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 #include <kontur/gcode/block.hpp>
-#include <kontur/length.hpp>
-#include <kontur/span_polynomial.hpp>
+#include <kontur/geometry/length.hpp>
+#include <kontur/geometry/span_polynomial.hpp>
 
 namespace kontur::gcode {
 

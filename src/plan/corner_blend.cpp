@@ -1,4 +1,4 @@
-#include <kontur/line_segment.hpp>
+#include <kontur/geometry/line_segment.hpp>
 #include <kontur/plan/corner_blend.hpp>
 #include <kontur/verify/checker.hpp>
 #include <kontur/plan/lookahead.hpp>

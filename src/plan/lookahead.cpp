@@ -1,5 +1,5 @@
-#include <kontur/differential.hpp>
-#include <kontur/interpolation.hpp>
+#include <kontur/geometry/differential.hpp>
+#include <kontur/interpolate/curve_interpolator.hpp>
 #include <kontur/plan/lookahead.hpp>
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 #include <kontur/error.hpp>
 #include <kontur/plan/program_moves.hpp>
-#include <kontur/span_polynomial.hpp>
+#include <kontur/geometry/span_polynomial.hpp>
 
 #include <fmt/format.h>
 

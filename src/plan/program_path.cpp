@@ -1,5 +1,5 @@
 #include <kontur/gcode/reader.hpp>
-#include <kontur/length.hpp>
+#include <kontur/geometry/length.hpp>
 #include <kontur/plan/program_moves.hpp>
 #include <kontur/plan/program_path.hpp>
 

@@ -4,10 +4,10 @@
 // interval whose ends are linear in x. The backward pass gives the largest x from which the rest
 // of the path can still be run to rest (the controllable set [0, K_k]); the forward pass takes at
 // every point the largest admissible u that stays controllable.
-#include <kontur/differential.hpp>
+#include <kontur/geometry/differential.hpp>
 #include <kontur/error.hpp>
-#include <kontur/interpolation.hpp>
-#include <kontur/length.hpp>
+#include <kontur/interpolate/curve_interpolator.hpp>
+#include <kontur/geometry/length.hpp>
 #include <kontur/plan/time_optimal.hpp>
 #include <kontur/tolerances.hpp>
 

@@ -1,7 +1,7 @@
 #pragma once
 // OpenCASCADE as the independent oracle: the same NURBS as a Geom_BSplineCurve, its derivatives,
 // and its length by GCPnts_AbscissaPoint.
-#include <kontur/nurbs.hpp>
+#include <kontur/geometry/nurbs.hpp>
 
 #include <GCPnts_AbscissaPoint.hxx>
 #include <Geom_BSplineCurve.hxx>

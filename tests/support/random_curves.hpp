@@ -2,7 +2,7 @@
 // Seeded random NURBS for property tests and benchmarks. The seed and the count come from the
 // environment (KONTUR_TEST_SEED, KONTUR_TEST_COUNT) so that CI runs a few hundred cases and a
 // developer can run millions; a failing case prints its seed and index.
-#include <kontur/nurbs.hpp>
+#include <kontur/geometry/nurbs.hpp>
 
 #include <cstdint>
 #include <cstdlib>

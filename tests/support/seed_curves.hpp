@@ -1,6 +1,6 @@
 #pragma once
 // The curves of the seed documents (methods.md sections 1-3), shared by tests and benchmarks.
-#include <kontur/nurbs.hpp>
+#include <kontur/geometry/nurbs.hpp>
 
 namespace kontur::testing {
 

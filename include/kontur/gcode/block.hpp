@@ -3,11 +3,11 @@
 // length and shape come from one place), its feed, the modal state it runs in and where it came
 // from. All lengths are in [mm] and in machine coordinates (work offsets, G92 and the XY rotation
 // of G10 L2 R applied), whatever G20/G21 the program uses.
-#include <kontur/conic_through_points.hpp>
-#include <kontur/curve.hpp>
-#include <kontur/helix_arc.hpp>
-#include <kontur/line_segment.hpp>
-#include <kontur/nurbs.hpp>
+#include <kontur/geometry/conic_through_points.hpp>
+#include <kontur/geometry/curve.hpp>
+#include <kontur/geometry/helix_arc.hpp>
+#include <kontur/geometry/line_segment.hpp>
+#include <kontur/geometry/nurbs.hpp>
 
 #include <array>
 #include <memory>

@@ -2,7 +2,7 @@
 // Kontur's interchange format for curves: a small JSON file
 //   {"degree": 3, "knots": [...], "points": [[x, y, z], ...], "weights": [...]}
 // weights optional; 2-D points [x, y] allowed (z = 0). Coordinates in [mm].
-#include <kontur/nurbs.hpp>
+#include <kontur/geometry/nurbs.hpp>
 
 #include <filesystem>
 #include <string>

@@ -8,7 +8,7 @@
 // which the blend stays within the tolerance of the two programmed lines, and at most 45 % of
 // each line's length (a line between two blended corners keeps a straight middle).
 // `kontur run`, `kontur verify` and the tests use the same stage, so they build the same path.
-#include <kontur/curve.hpp>
+#include <kontur/geometry/curve.hpp>
 #include <kontur/gcode/block.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/plan/motion_planner.hpp>

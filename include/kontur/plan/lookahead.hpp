@@ -2,7 +2,7 @@
 // Look-ahead across moves: the speed at every junction, so that braking starts early enough
 // (the reason seed 000 computes the length of a spline), and the path limits of a move from its
 // geometry and the machine's axis limits.
-#include <kontur/curve.hpp>
+#include <kontur/geometry/curve.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/plan/scurve.hpp>
 #include <kontur/tolerances.hpp>

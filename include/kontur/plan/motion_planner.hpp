@@ -4,8 +4,8 @@
 // gets its path limits and a junction limit with the piece before; the look-ahead turns them into
 // jerk-limited profiles; next() samples the profiles at the servo period and maps the distance
 // along each piece to a point by the exact arc length (the planning allocates, next() does not).
-#include <kontur/curve.hpp>
-#include <kontur/length.hpp>
+#include <kontur/geometry/curve.hpp>
+#include <kontur/geometry/length.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/plan/lookahead.hpp>
 

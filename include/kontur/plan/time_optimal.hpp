@@ -6,7 +6,7 @@
 // pass the profile). Jerk is ignored: it is a lower bound on the time of any planner that keeps
 // the same velocity, acceleration, feed and chord limits (docs/planner.md, "Time-optimal
 // reference").
-#include <kontur/curve.hpp>
+#include <kontur/geometry/curve.hpp>
 #include <kontur/machine.hpp>
 
 #include <cstddef>

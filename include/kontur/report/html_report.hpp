@@ -14,7 +14,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
-#include <kontur/curve.hpp>
+#include <kontur/geometry/curve.hpp>
 #include <optional>
 #include <span>
 #include <string>

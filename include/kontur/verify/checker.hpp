@@ -2,7 +2,7 @@
 // An independent check of setpoints against the machine and the programmed path, computed from
 // the setpoints alone (finite differences) and the path's geometry: nothing of the planner is
 // trusted. The core of `kontur verify` and of the tests that prove the planner.
-#include <kontur/curve.hpp>
+#include <kontur/geometry/curve.hpp>
 #include <kontur/machine.hpp>
 
 #include <cstddef>

@@ -1,5 +1,5 @@
 // Motion along an arc: the seed programs' angular modes and Kontur's constant feed.
-#include <kontur/arc_motion.hpp>
+#include <kontur/interpolate/arc_motion.hpp>
 #include <kontur/error.hpp>
 
 #include <fmt/format.h>

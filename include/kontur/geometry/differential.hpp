@@ -1,7 +1,7 @@
 #pragma once
 // Differential geometry of a curve at a point: unit tangent, curvature, and the chord
 // (bow-height) error of a step, used by the feed planner and the seed 004 interpolator.
-#include <kontur/curve.hpp>
+#include <kontur/geometry/curve.hpp>
 
 namespace kontur {
 

@@ -1,4 +1,4 @@
-#include <kontur/line_segment.hpp>
+#include <kontur/geometry/line_segment.hpp>
 
 #include <algorithm>
 

@@ -4,8 +4,8 @@
 // constant angular speed, and Kontur's constant-feed mode, setpoints at a servo period with the
 // arc length exact (ArcLengthTable::u_of_s). Planning (the constructors) may allocate and throw;
 // sampling (sample) is noexcept and allocation-free.
-#include <kontur/curve.hpp>
-#include <kontur/length.hpp>
+#include <kontur/geometry/curve.hpp>
+#include <kontur/geometry/length.hpp>
 
 #include <vector>
 

@@ -1,7 +1,7 @@
 // Circle through three points (methods.md section 4; seed 001 section 2, program ARC).
 #include "arc_checks.hpp"
 
-#include <kontur/circle_through_points.hpp>
+#include <kontur/geometry/circle_through_points.hpp>
 #include <kontur/error.hpp>
 #include <kontur/tolerances.hpp>
 

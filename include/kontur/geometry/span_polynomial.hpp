@@ -2,8 +2,8 @@
 // The upper level of seed 002: every non-empty knot span of a NURBS as a power-basis polynomial
 // per coordinate. Rational curves are kept in homogeneous coordinates (w x, w y, w z, w), which
 // are polynomials on a span; the curve point is their quotient.
-#include <kontur/curve.hpp>
-#include <kontur/nurbs.hpp>
+#include <kontur/geometry/curve.hpp>
+#include <kontur/geometry/nurbs.hpp>
 #include <kontur/tolerances.hpp>
 
 #include <Eigen/Core>

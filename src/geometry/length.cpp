@@ -1,4 +1,4 @@
-#include <kontur/length.hpp>
+#include <kontur/geometry/length.hpp>
 
 #include "gauss_kronrod_rules.hpp"
 

@@ -1,7 +1,7 @@
 #pragma once
 // Curve length: the Simpson-Runge method of seed 000 (both of its schemes) and Kontur's default,
 // adaptive Gauss-Kronrod (7/15) per span, plus the arc-length table that inverts it, u(s).
-#include <kontur/curve.hpp>
+#include <kontur/geometry/curve.hpp>
 #include <kontur/tolerances.hpp>
 
 #include <vector>

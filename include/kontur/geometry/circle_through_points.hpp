@@ -3,8 +3,8 @@
 // ARC): centre, radius, plane, the relative frame and its homogeneous matrices, the angles of
 // the points, the arc's angle, length and direction. The arc itself is a HelixArc (rise 0), so
 // that length, u(s) and the motion modes treat it like any other Curve.
-#include <kontur/curve.hpp>
-#include <kontur/helix_arc.hpp>
+#include <kontur/geometry/curve.hpp>
+#include <kontur/geometry/helix_arc.hpp>
 
 #include <Eigen/Core>
 

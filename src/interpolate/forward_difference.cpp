@@ -1,4 +1,4 @@
-#include <kontur/forward_difference.hpp>
+#include <kontur/interpolate/forward_difference.hpp>
 
 #include <cmath>
 

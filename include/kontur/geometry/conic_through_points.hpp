@@ -5,7 +5,7 @@
 // classification, the canonical parameters, the focal frame and polar equation
 // rho = p / (1 - e cos phi), the focal angles of the points, the direction and the swept focal
 // angle. The arc is a ConicArc, a Curve whose parameter is the focal angle swept from r1.
-#include <kontur/curve.hpp>
+#include <kontur/geometry/curve.hpp>
 
 #include <Eigen/Core>
 

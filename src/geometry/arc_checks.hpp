@@ -1,6 +1,6 @@
 #pragma once
 // Input checks shared by the circle and the conic through points (internal).
-#include <kontur/curve.hpp>
+#include <kontur/geometry/curve.hpp>
 
 #include <cstddef>
 #include <span>

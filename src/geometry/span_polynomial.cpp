@@ -1,4 +1,4 @@
-#include <kontur/span_polynomial.hpp>
+#include <kontur/geometry/span_polynomial.hpp>
 
 #include <algorithm>
 

@@ -1,6 +1,6 @@
-#include <kontur/differential.hpp>
-#include <kontur/interpolation.hpp>
-#include <kontur/length.hpp>
+#include <kontur/geometry/differential.hpp>
+#include <kontur/interpolate/curve_interpolator.hpp>
+#include <kontur/geometry/length.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 #include <kontur/error.hpp>
-#include <kontur/nurbs.hpp>
+#include <kontur/geometry/nurbs.hpp>
 #include <kontur/tolerances.hpp>
 
 #include <fmt/format.h>

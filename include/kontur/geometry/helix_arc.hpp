@@ -4,7 +4,7 @@
 // r(u) = R + dR u, u in [0, 1]. dR (normally 0) lets a G2/G3 arc whose programmed end lies up to the
 // radius tolerance off its circle end exactly there (a slight spiral, as LinuxCNC does). It is the geometry of G2/G3 arcs and helices and of the circle through three
 // points; the frame (centre, e1, e2, n) is the relative frame of the seed monograph.
-#include <kontur/curve.hpp>
+#include <kontur/geometry/curve.hpp>
 
 namespace kontur {
 

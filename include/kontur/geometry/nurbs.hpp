@@ -3,7 +3,7 @@
 // vectors and optional weights. Evaluation of the point and the first three derivatives by span
 // finding and the basis-function derivative algorithm (Piegl & Tiller A2.1, A2.3, A4.2), without
 // allocation.
-#include <kontur/curve.hpp>
+#include <kontur/geometry/curve.hpp>
 
 #include <optional>
 #include <string>

@@ -1,6 +1,6 @@
 #include <kontur/error.hpp>
-#include <kontur/helix_arc.hpp>
-#include <kontur/length.hpp>
+#include <kontur/geometry/helix_arc.hpp>
+#include <kontur/geometry/length.hpp>
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>

@@ -1,6 +1,6 @@
 #pragma once
 // A straight segment as a Curve: C(u) = start + u (end - start), u in [0, 1].
-#include <kontur/curve.hpp>
+#include <kontur/geometry/curve.hpp>
 
 namespace kontur {
 

@@ -1,7 +1,7 @@
 // Conic through five points (methods.md section 5; seed 001 section 3, program SOCADI).
 #include "arc_checks.hpp"
 
-#include <kontur/conic_through_points.hpp>
+#include <kontur/geometry/conic_through_points.hpp>
 #include <kontur/error.hpp>
 #include <kontur/tolerances.hpp>
 

@@ -1,4 +1,4 @@
-#include <kontur/differential.hpp>
+#include <kontur/geometry/differential.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 #pragma once
 // The lower level of seed 002: real-time evaluation of span polynomials by forward differences,
 // p additions per coordinate per servo cycle, re-anchored exactly at every span boundary.
-#include <kontur/span_polynomial.hpp>
+#include <kontur/geometry/span_polynomial.hpp>
 
 
 namespace kontur {

@@ -4,8 +4,8 @@
 // curve. The seed's first- and second-order Taylor updates leave a feed fluctuation (the distance
 // actually travelled differs from ds); Kontur's default corrects the Taylor prediction by Newton
 // steps on the arc length of the step, so the distance equals ds to ~1e-12 relative.
-#include <kontur/curve.hpp>
-#include <kontur/length.hpp>
+#include <kontur/geometry/curve.hpp>
+#include <kontur/geometry/length.hpp>
 
 #include <optional>
 
