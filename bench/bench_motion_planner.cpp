@@ -1,7 +1,8 @@
-// The motion planner's cost: MotionPlanner::next per setpoint (the whole per-cycle path: profile,
-// exact arc length, curve point) and planning per move, on synthetic moves and on the LinuxCNC
-// NURBS programs (default machine, 1 ms); and whole runs of real programs (read + plan + sample,
-// no writing, as `kontur run` does it) against the simulated machining time.
+// The motion planner's cost: trajectory::Sampler::next per setpoint (the whole per-cycle path:
+// profile, exact arc length, curve point) and planning per move, on synthetic moves and on the
+// LinuxCNC NURBS programs (default machine, 1 ms); and whole runs of real programs through the
+// library's Pipeline (what `kontur run` calls: read, blend, plan, sample; no writing), with and
+// without the streaming check, against the simulated machining time.
 // Programs from ../shared/data/gcode: skipped with a note when absent or not readable.
 //
 // BM_Planner counters (moves pushed first, then sampled):
@@ -15,13 +16,17 @@
 //   machining_s       simulated time of the program [s]; setpoints, moves
 //   read_share        share of the run spent reading the program (one read-only pass, same process)
 //   x_real_time       machining time over the run's CPU time (x_real_time_wall: over wall time)
+// BM_WholeRunChecked: the same with the streaming independent check of every setpoint (kontur run
+//   without writing); its run_ms against BM_WholeRun's is the check's cost.
 #include <benchmark/benchmark.h>
 #include <kontur/error.hpp>
 #include <kontur/gcode/reader.hpp>
 #include <kontur/geometry/line_segment.hpp>
-#include <kontur/plan/motion_planner.hpp>
-#include <kontur/plan/program_moves.hpp>
 #include <kontur/geometry/span_polynomial.hpp>
+#include <kontur/pipeline.hpp>
+#include <kontur/plan/motion_planner.hpp>
+#include <kontur/program/block_moves.hpp>
+#include <kontur/trajectory/sampler.hpp>
 
 #include "support/seed_curves.hpp"
 #include "support_programs.hpp"
@@ -35,34 +40,47 @@ namespace {
 
 using namespace kontur;
 
-std::vector<plan::MoveInput> nurbs_moves() {
-  std::vector<plan::MoveInput> moves;
+std::vector<program::Move> nurbs_moves() {
+  std::vector<program::Move> moves;
   const NurbsCurve c1(testing::seed_example(1));
-  moves.push_back({std::make_shared<SpanPolynomialCurve>(c1), 100.0, false, 1});
+  moves.push_back(program::move_along(std::make_shared<SpanPolynomialCurve>(c1), 100.0, false, 1));
+  moves.back().id = 0;
   return moves;
 }
 
-std::vector<plan::MoveInput> polyline_moves() {
-  std::vector<plan::MoveInput> moves;
-  for (int i = 0; i < 500; ++i)
-    moves.push_back({std::make_shared<LineSegment>(Vec3(i, 0.2 * (i % 3), 0), Vec3(i + 1, 0.2 * ((i + 1) % 3), 0)), 100.0,
-                     false, i});
+std::vector<program::Move> polyline_moves() {
+  std::vector<program::Move> moves;
+  for (int i = 0; i < 500; ++i) {
+    moves.push_back(program::move_along(
+        std::make_shared<LineSegment>(Vec3(i, 0.2 * (i % 3), 0), Vec3(i + 1, 0.2 * ((i + 1) % 3), 0)), 100.0, false, i));
+    moves.back().id = static_cast<program::MoveId>(i);
+  }
   return moves;
 }
 
-void BM_Planner(benchmark::State& state, const std::vector<plan::MoveInput>* moves, const Machine* machine) {
+// The planner, its trajectory and the sampler, wired as the pipeline wires them.
+struct Planned {
+  explicit Planned(const Machine& machine, const std::vector<program::Move>& moves)
+      : planner(machine, trajectory), sampler(trajectory, machine.servo_period_s) {
+    for (const auto& m : moves) planner.push(m);
+    planner.finish();
+  }
+  trajectory::Trajectory trajectory;
+  plan::MotionPlanner planner;
+  trajectory::Sampler sampler;
+};
+
+void BM_Planner(benchmark::State& state, const std::vector<program::Move>* moves, const Machine* machine) {
   long setpoints = 0;
   double plan_ns = 0.0, sample_ns = 0.0, machining_s = 0.0;
   for (auto _ : state) {
     const double c0 = bench::thread_cpu_ns();
-    plan::MotionPlanner p(*machine);
-    for (const auto& m : *moves) p.push(m);
-    p.finish();
+    Planned p(*machine, *moves);
     const double c1 = bench::thread_cpu_ns();
-    plan::Setpoint sp;
-    Vec3 acc = Vec3::Zero();
-    while (p.next(sp)) {
-      acc += sp.position;
+    trajectory::Setpoint sp;
+    double acc = 0.0;
+    while (p.sampler.next(sp)) {
+      acc += sp.position[0];
       ++setpoints;
     }
     benchmark::DoNotOptimize(acc);
@@ -72,13 +90,11 @@ void BM_Planner(benchmark::State& state, const std::vector<plan::MoveInput>* mov
   }
   // Every next() timed on its own; five runs, each call's fastest (see repeated_call_times).
   const bench::RepeatedCallTimes r = bench::repeated_call_times(5, [&](std::vector<double>& ns) {
-    plan::MotionPlanner p(*machine);
-    for (const auto& m : *moves) p.push(m);
-    p.finish();
-    plan::Setpoint sp;
+    Planned p(*machine, *moves);
+    trajectory::Setpoint sp;
     while (true) {
       const auto a = bench::Clock::now();
-      const bool more = p.next(sp);
+      const bool more = p.sampler.next(sp);
       const auto b = bench::Clock::now();
       if (!more) break;
       ns.push_back(bench::ns_between(a, b));
@@ -99,36 +115,27 @@ void BM_Planner(benchmark::State& state, const std::vector<plan::MoveInput>* mov
   state.counters["x_real_time"] = machining_s / ((plan_ns + sample_ns) * 1e-9);
 }
 
-// A whole program as `kontur run` plans it, without writing the setpoints.
-void BM_WholeRun(benchmark::State& state, const std::string& program, const Machine* machine) {
+// A whole program through the library's pipeline, as `kontur run` runs it, without writing the
+// setpoints; `check`: with the streaming independent check of every setpoint.
+void BM_WholeRun(benchmark::State& state, const std::string& program, const Machine* machine, bool check) {
   long setpoints = 0, moves = 0;
   double machining_s = 0.0, cpu_ns = 0.0, wall_ns = 0.0;
+  PipelineOptions options;
+  options.check = check;
+  Pipeline pipeline(*machine, options);
   for (auto _ : state) {
     const auto t0 = bench::Clock::now();
     const double c0 = bench::thread_cpu_ns();
-    plan::MotionPlanner planner(*machine);
-    plan::Setpoint sp;
-    Vec3 acc = Vec3::Zero();
-    setpoints = moves = 0;
-    auto drain = [&] {
-      while (planner.next(sp)) {
-        acc += sp.position;
-        ++setpoints;
-      }
-    };
-    gcode::for_each_block(program, [&](const gcode::Block& b) {
-      const plan::MoveInput m = plan::move_input(b, *machine);
-      if (!m.curve) return;
-      planner.push(m);
-      ++moves;
-      drain();
-    });
-    planner.finish();
-    drain();
+    double acc = 0.0;
+    PipelineEvents events;
+    events.setpoint = [&](const trajectory::Setpoint& sp) { acc += sp.position[0]; };
+    const RunResult r = pipeline.run(program, events);
     benchmark::DoNotOptimize(acc);
     cpu_ns += bench::thread_cpu_ns() - c0;
     wall_ns += bench::ns_between(t0, bench::Clock::now());
-    machining_s = sp.t_s;
+    machining_s = r.total_time_s;
+    setpoints = r.setpoints;
+    moves = static_cast<long>(pipeline.moves().size());
   }
   // Baseline in the same process: reading alone (both passes of for_each_block).
   const double r0 = bench::thread_cpu_ns();
@@ -161,13 +168,13 @@ void for_readable(const std::vector<bench::fs::path>& programs, Register&& reg) 
 
 int main(int argc, char** argv) {
   static const Machine machine = default_machine();
-  static const std::vector<plan::MoveInput> seed = nurbs_moves(), polyline = polyline_moves();
+  static const std::vector<program::Move> seed = nurbs_moves(), polyline = polyline_moves();
   benchmark::RegisterBenchmark("BM_Planner/seed_nurbs", BM_Planner, &seed, &machine)->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("BM_Planner/polyline_500", BM_Planner, &polyline, &machine)
       ->Unit(benchmark::kMillisecond);
 
   // LinuxCNC NURBS programs, default machine.
-  static std::vector<std::vector<plan::MoveInput>> nurbs_programs;
+  static std::vector<std::vector<program::Move>> nurbs_programs;
   const auto nurbs_files = bench::ngc_files(bench::shared_path("data/gcode/linuxcnc-nurbs"));
   if (nurbs_files.empty()) std::fprintf(stderr, "note: ../shared/data/gcode/linuxcnc-nurbs absent: skipped\n");
   nurbs_programs.reserve(nurbs_files.size());  // the registered pointers stay valid
@@ -191,15 +198,18 @@ int main(int argc, char** argv) {
   } else {
     std::fprintf(stderr, "note: %s absent: whole runs skipped\n", ini.string().c_str());
   }
-  static std::vector<std::vector<plan::MoveInput>> run_moves;
+  static std::vector<std::vector<program::Move>> run_moves;
   run_moves.reserve(runs.size());
   for_readable(runs, [&](const bench::fs::path& p) {
     run_moves.push_back(bench::program_moves(p, xyz));  // unreadable programs are left out here
     benchmark::RegisterBenchmark(("BM_Planner/" + p.parent_path().filename().string() + "/" + p.stem().string()).c_str(),
                                  BM_Planner, &run_moves.back(), &xyz)
         ->Unit(benchmark::kMillisecond);
-    const std::string name = "BM_WholeRun/" + p.parent_path().filename().string() + "/" + p.stem().string();
-    benchmark::RegisterBenchmark(name.c_str(), BM_WholeRun, p.string(), &xyz)->Unit(benchmark::kMillisecond);
+    const std::string name = p.parent_path().filename().string() + "/" + p.stem().string();
+    benchmark::RegisterBenchmark(("BM_WholeRun/" + name).c_str(), BM_WholeRun, p.string(), &xyz, false)
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("BM_WholeRunChecked/" + name).c_str(), BM_WholeRun, p.string(), &xyz, true)
+        ->Unit(benchmark::kMillisecond);
   });
 
   benchmark::Initialize(&argc, argv);

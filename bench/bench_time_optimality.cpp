@@ -10,8 +10,9 @@
 #include <kontur/gcode/reader.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/plan/motion_planner.hpp>
-#include <kontur/plan/program_moves.hpp>
 #include <kontur/plan/time_optimal.hpp>
+#include <kontur/program/block_moves.hpp>
+#include <kontur/trajectory/sampler.hpp>
 #include <kontur/geometry/span_polynomial.hpp>
 
 #include <cmath>
@@ -29,7 +30,7 @@ const std::string source_dir = KONTUR_SOURCE_DIR;
 const std::string shared_dir = source_dir + "/../shared/data/gcode";
 
 struct Program {
-  std::vector<plan::MoveInput> moves;
+  std::vector<program::Move> moves;
 };
 
 // The program's moves as `kontur run --no-blend` plans them (dwells left out: they add the same
@@ -37,7 +38,7 @@ struct Program {
 Program read_program(const std::string& path, const Machine& machine) {
   Program p;
   gcode::for_each_block(path, [&](const gcode::Block& b) {
-    plan::MoveInput m = plan::move_input(b, machine);
+    program::Move m = program::move_of(b, machine);
     if (m.curve) p.moves.push_back(std::move(m));
   });
   return p;
@@ -54,14 +55,16 @@ void BM_TimeOptimality(benchmark::State& state, const std::string& program) {
   for (const auto& m : p.moves) reference_moves.push_back({m.curve.get(), m.feed_mm_s, m.exact_stop});
   double online = 0.0, reference = 0.0, reference_stop = 0.0, points = 0.0, grid_change = 0.0;
   for (auto _ : state) {
-    plan::MotionPlanner planner(machine);
-    plan::Setpoint sp, last;
+    trajectory::Trajectory trajectory;
+    plan::MotionPlanner planner(machine, trajectory);
+    trajectory::Sampler sampler(trajectory, machine.servo_period_s);
+    trajectory::Setpoint sp, last;
     for (const auto& m : p.moves) {
       planner.push(m);
-      while (planner.next(sp)) last = sp;
+      while (sampler.next(sp)) last = sp;
     }
     planner.finish();
-    while (planner.next(sp)) last = sp;
+    while (sampler.next(sp)) last = sp;
     online = last.t_s;
     plan::TimeOptimalOptions o;
     o.corners = plan::CornerRule::servo_period;

@@ -6,7 +6,7 @@
 #include <kontur/machine.hpp>
 #include <kontur/geometry/nurbs.hpp>
 #include <kontur/plan/motion_planner.hpp>
-#include <kontur/plan/program_moves.hpp>
+#include <kontur/program/block_moves.hpp>
 #include <kontur/geometry/span_polynomial.hpp>
 
 #include <algorithm>
@@ -56,12 +56,15 @@ inline std::vector<ProgramCurve> program_nurbs(const fs::path& program) {
   return out;
 }
 
-/// The planner moves of a whole program on `machine`, as `kontur run` makes them (dwells left out).
-inline std::vector<plan::MoveInput> program_moves(const fs::path& program, const Machine& machine) {
-  std::vector<plan::MoveInput> out;
+/// The moves of a whole program's blocks on `machine` (no corner blends, dwells left out; ids in
+/// order), for benchmarks of the planner alone. Whole runs use the Pipeline.
+inline std::vector<program::Move> program_moves(const fs::path& program, const Machine& machine) {
+  std::vector<program::Move> out;
   gcode::for_each_block(program.string(), [&](const gcode::Block& b) {
-    auto m = plan::move_input(b, machine);
-    if (m.curve) out.push_back(std::move(m));
+    auto m = program::move_of(b, machine);
+    if (!m.curve) return;
+    m.id = static_cast<program::MoveId>(out.size());
+    out.push_back(std::move(m));
   });
   return out;
 }

@@ -3,8 +3,14 @@
 #include <kontur/geometry/helix_arc.hpp>
 #include <kontur/geometry/line_segment.hpp>
 #include <kontur/geometry/nurbs.hpp>
+#include <kontur/geometry/corner_blend_curve.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/verify/checker.hpp>
+
+#include "support/planner_run.hpp"
+#include "support/random_curves.hpp"
+
+#include <random>
 
 #include <limits>
 #include <numbers>
@@ -15,7 +21,7 @@ namespace {
 struct Case {
   std::vector<std::shared_ptr<const Curve>> curves;
   std::vector<Sample> samples;
-  std::vector<PathMove> moves;
+  std::vector<program::Move> moves;
 };
 
 Case planned(const Machine& m) {
@@ -27,14 +33,11 @@ Case planned(const Machine& m) {
   c.curves = {std::make_shared<LineSegment>(Vec3(0, 0, 0), Vec3(50, 0, 0)),
               std::make_shared<HelixArc>(f, 20.0, std::numbers::pi / 2, 5.0),
               std::make_shared<LineSegment>(Vec3(70, 20, 5), Vec3(70, 0, 5))};
-  plan::MotionPlanner p(m);
   for (std::size_t i = 0; i < c.curves.size(); ++i) {
-    p.push({c.curves[i], 120.0, false, static_cast<long>(i + 1)});
-    c.moves.push_back({c.curves[i].get(), static_cast<long>(i + 1)});
+    c.moves.push_back(program::move_along(c.curves[i], 120.0, false, static_cast<long>(i + 1)));
+    c.moves.back().id = static_cast<program::MoveId>(i);
   }
-  p.finish();
-  plan::Setpoint sp;
-  while (p.next(sp)) c.samples.push_back({sp.t_s, sp.position, sp.source_line});
+  c.samples = testing::plan_and_sample(m, c.moves);
   return c;
 }
 
@@ -83,15 +86,69 @@ TEST(Checker, ProjectionOnAnUnevenlyWeightedNurbs) {
   d.weights = {1, 46, 1, 0.03, 34, 1};
   auto curve = std::make_shared<NurbsCurve>(d);
   const Machine m = default_machine();
-  plan::MotionPlanner p(m);
-  p.push({curve, 100.0, false, 1});
-  p.finish();
-  std::vector<Sample> samples;
-  plan::Setpoint sp;
-  while (p.next(sp)) samples.push_back({sp.t_s, sp.position, sp.source_line});
-  const Report r = check(samples, {{curve.get(), 1}}, m);
+  const std::vector<program::Move> moves = {program::move_along(curve, 100.0, false, 1)};
+  std::vector<Sample> samples = testing::plan_and_sample(m, moves);
+  for (Sample& s : samples) s.move = program::no_move;  // as read from a file: matched by its line
+  const Report r = check(samples, moves, m);
   EXPECT_LE(r.max_path_error_mm, 1e-9);
   EXPECT_EQ(r.end_error_mm, 0.0);
+}
+
+// Setpoints read from a file carry no move id: the checker matches them by their source line and
+// must then find what it finds with the planner's ids.
+TEST(Checker, SetpointsWithoutMoveIdsAreMatchedByLineAlike) {
+  const Machine m = default_machine();
+  const Case c = planned(m);
+  auto anonymous = c.samples;
+  for (Sample& s : anonymous) s.move = program::no_move;
+  const Report a = check(c.samples, c.moves, m), b = check(anonymous, c.moves, m);
+  ASSERT_EQ(a.blocks.size(), b.blocks.size());
+  for (std::size_t i = 0; i < a.blocks.size(); ++i) {
+    EXPECT_EQ(a.blocks[i].samples, b.blocks[i].samples) << "move " << i;
+    EXPECT_EQ(a.blocks[i].max_jerk_ratio, b.blocks[i].max_jerk_ratio) << "move " << i;
+  }
+  EXPECT_EQ(a.max_path_error_mm, b.max_path_error_mm);
+}
+
+// Regression: a canned cycle's feed down and rapid retract run along the same line with the same
+// source line; matching by line and distance gave every setpoint of the feed to the retract (its
+// block showed 0 setpoints in test-active-states.ngc). The planner's move ids match them exactly.
+TEST(Checker, MoveIdsKeepAFeedAndItsRetractAlongTheSameLineApart) {
+  const Machine m = default_machine();
+  const Vec3 top(0, 0, 5), bottom(0, 0, -5);
+  std::vector<program::Move> moves = {
+      program::move_along(std::make_shared<LineSegment>(top, bottom), 10.0, true, 27),   // feed down
+      program::move_along(std::make_shared<LineSegment>(bottom, top), 200.0, true, 27)}; // rapid up
+  for (std::size_t i = 0; i < moves.size(); ++i) moves[i].id = static_cast<program::MoveId>(i);
+  const std::vector<Sample> samples = testing::plan_and_sample(m, moves);
+  const Report r = check(samples, moves, m);
+  ASSERT_EQ(r.blocks.size(), 2u);
+  long feed = 0;
+  for (const Sample& s : samples) feed += s.move == 0 ? 1 : 0;
+  EXPECT_EQ(r.blocks[0].samples, feed);
+  EXPECT_GT(r.blocks[0].samples, 900);  // 10 mm at 10 mm/s: about a second
+  EXPECT_EQ(r.blocks[0].samples + r.blocks[1].samples, static_cast<long>(samples.size()));
+  EXPECT_TRUE(r.passed(m)) << ::testing::PrintToString(r.failures(m));
+}
+
+// The checker measures a blend's distance from its programmed corner its own way (samples and
+// parabolic refinement); the blender sizes blends by dense samples and a golden-section search.
+// Both must agree on seeded random corners, and a blend that leaves its tolerance must fail.
+TEST(Checker, BlendDeviationAgreesWithTheBlendersOwnMeasure) {
+  std::mt19937_64 rng(testing::test_seed());
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), trim(1e-4, 5.0);
+  for (int i = 0; i < 200; ++i) {
+    const Vec3 t1 = Vec3(unit(rng), unit(rng), unit(rng)).normalized();
+    Vec3 t2 = Vec3(unit(rng), unit(rng), unit(rng)).normalized();
+    if (t1.dot(t2) < -0.5) t2 = -t2;
+    const Vec3 corner(unit(rng) * 100, unit(rng) * 100, unit(rng) * 100);
+    const double d = trim(rng);
+    const CornerBlendCurve blend(corner, t1, t2, d);
+    const Vec3 before = corner - 2 * d * t1, after = corner + 2 * d * t2;
+    const double theirs = corner_deviation(blend, before, corner, after);
+    const double ours = blend_deviation(blend, {before, corner, after, 1.0});
+    EXPECT_NEAR(ours, theirs, 1e-12 * std::max(1.0, theirs)) << "corner " << i;
+  }
 }
 
 }  // namespace

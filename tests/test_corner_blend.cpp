@@ -1,12 +1,14 @@
-// Corner blending within the G64 tolerance (plan/corner_blend.hpp): every blend within its
+// Corner blending within the G64 tolerance (program/corner_blender.hpp): every blend within its
 // tolerance of the programmed lines, curvature-continuous at both ends, none under exact stop,
 // lines between blends keep a straight middle, and a blended square passes the check faster.
 #include <gtest/gtest.h>
 #include <kontur/geometry/line_segment.hpp>
 #include <kontur/machine.hpp>
-#include <kontur/plan/corner_blend.hpp>
 #include <kontur/plan/motion_planner.hpp>
+#include <kontur/program/corner_blender.hpp>
 #include <kontur/verify/checker.hpp>
+
+#include "support/planner_run.hpp"
 
 #include <cmath>
 #include <deque>
@@ -17,17 +19,21 @@
 namespace kontur {
 namespace {
 
-plan::MoveInput line_move(const Vec3& a, const Vec3& b, double feed_mm_s = 100.0, bool exact_stop = false,
-                          long line = 1) {
-  return {std::make_shared<const LineSegment>(a, b), feed_mm_s, exact_stop, line};
+// A line move with the G64 tolerance `tol_mm` at its end.
+program::Move line_move(const Vec3& a, const Vec3& b, double tol_mm, double feed_mm_s = 100.0, bool exact_stop = false,
+                        long line = 1) {
+  program::Move m = program::move_along(std::make_shared<const LineSegment>(a, b), feed_mm_s, exact_stop, line);
+  m.corner_tolerance_mm = tol_mm;
+  return m;
 }
 
-// The moves the blender makes of a polyline (tolerance `tol_mm` at every corner).
-std::vector<plan::BlendedMove> blend_polyline(const std::vector<Vec3>& pts, double tol_mm, bool enabled = true) {
-  plan::CornerBlender blender(enabled);
-  std::vector<plan::BlendedMove> out;
+// The moves the blender makes of a polyline (tolerance `tol_mm` at every corner); line i + 1 is
+// the programmed segment from pts[i] to pts[i + 1].
+std::vector<program::Move> blend_polyline(const std::vector<Vec3>& pts, double tol_mm, bool enabled = true) {
+  program::CornerBlender blender(enabled);
+  std::vector<program::Move> out;
   for (std::size_t i = 0; i + 1 < pts.size(); ++i)
-    blender.push(line_move(pts[i], pts[i + 1], 100.0, false, static_cast<long>(i + 1)), tol_mm, i, out);
+    blender.push(line_move(pts[i], pts[i + 1], tol_mm, 100.0, false, static_cast<long>(i + 1)), out);
   blender.flush(out);
   return out;
 }
@@ -49,10 +55,9 @@ TEST(CornerBlend, DeviationWithinToleranceOnRandomCorners) {
     const std::vector<Vec3> pts = {p - len(rng) * t1, p, p + len(rng) * t2};
     const auto out = blend_polyline(pts, delta);
     for (const auto& bm : out) {
-      if (!bm.blend) continue;
+      if (!bm.corner) continue;
       ++blends;
-      const verify::ProgrammedCorner pc{bm.before, bm.corner, bm.after, bm.tolerance_mm};
-      const double dev = verify::corner_deviation(*bm.move.curve, pc);
+      const double dev = verify::blend_deviation(*bm.curve, *bm.corner);
       EXPECT_LE(dev, delta * (1 + 1e-9)) << "corner " << i;
       if (dev >= 0.99 * delta) ++at_tolerance;
     }
@@ -75,7 +80,7 @@ TEST(CornerBlend, CurvatureContinuousAtBothEnds) {
     const std::vector<Vec3> pts = {p - 10.0 * t1, p, p + 7.0 * t2};
     const auto out = blend_polyline(pts, 0.01);
     ASSERT_EQ(out.size(), 3U);
-    const Curve& c = *out[1].move.curve;
+    const Curve& c = *out[1].curve;
     for (const auto& [u, t] : {std::pair{0.0, t1}, std::pair{1.0, t2}}) {
       const Derivatives d = c.derivatives(u, 2);
       const Vec3 tangent = d[1].normalized();
@@ -84,21 +89,21 @@ TEST(CornerBlend, CurvatureContinuousAtBothEnds) {
       EXPECT_LT(curvature.norm(), 1e-9);  // a line's curvature is zero
     }
     // The pieces join: the incoming line ends where the blend starts, the outgoing starts where it ends.
-    EXPECT_LT((out[0].move.curve->point(1.0) - c.point(0.0)).norm(), 1e-12);
-    EXPECT_LT((out[2].move.curve->point(0.0) - c.point(1.0)).norm(), 1e-12);
-    EXPECT_LT((out[0].move.curve->point(0.0) - pts[0]).norm(), 1e-12);
-    EXPECT_LT((out[2].move.curve->point(1.0) - pts[2]).norm(), 1e-12);
+    EXPECT_LT((out[0].curve->point(1.0) - c.point(0.0)).norm(), 1e-12);
+    EXPECT_LT((out[2].curve->point(0.0) - c.point(1.0)).norm(), 1e-12);
+    EXPECT_LT((out[0].curve->point(0.0) - pts[0]).norm(), 1e-12);
+    EXPECT_LT((out[2].curve->point(1.0) - pts[2]).norm(), 1e-12);
   }
 }
 
 TEST(CornerBlend, ExactStopKeepsTheCorner) {
-  plan::CornerBlender blender;
-  std::vector<plan::BlendedMove> out;
-  blender.push(line_move({0, 0, 0}, {10, 0, 0}, 100.0, true), 0.01, 0, out);  // G61
-  blender.push(line_move({10, 0, 0}, {10, 10, 0}), 0.01, 1, out);
+  program::CornerBlender blender;
+  std::vector<program::Move> out;
+  blender.push(line_move({0, 0, 0}, {10, 0, 0}, 0.01, 100.0, true), out);  // G61
+  blender.push(line_move({10, 0, 0}, {10, 10, 0}, 0.01), out);
   blender.flush(out);
   ASSERT_EQ(out.size(), 2U);
-  for (const auto& bm : out) EXPECT_FALSE(bm.blend);
+  for (const auto& bm : out) EXPECT_FALSE(bm.corner);
   // A tolerance of zero (corner_tolerance under G61 / G61.1) keeps it too.
   EXPECT_EQ(blend_polyline({{0, 0, 0}, {10, 0, 0}, {10, 10, 0}}, 0.0).size(), 2U);
   // And so does --no-blend.
@@ -120,19 +125,20 @@ TEST(CornerBlend, ShortLinesKeepAStraightMiddle) {
   const auto out = blend_polyline(pts, 1.0);
   int blends = 0;
   for (std::size_t i = 0; i < out.size(); ++i) {
-    const Curve& c = *out[i].move.curve;
-    if (out[i].blend) {
+    const Curve& c = *out[i].curve;
+    if (out[i].corner) {
       ++blends;
       continue;
     }
     const auto* l = dynamic_cast<const LineSegment*>(&c);
     ASSERT_NE(l, nullptr);
-    const double programmed = (pts[out[i].tag + 1] - pts[out[i].tag]).norm();
+    const auto tag = static_cast<std::size_t>(out[i].source_line - 1);
+    const double programmed = (pts[tag + 1] - pts[tag]).norm();
     EXPECT_GE(l->length_mm(), (1.0 - 2 * 0.45) * programmed * (1 - 1e-9));
     // Along the programmed line, in its direction.
-    EXPECT_GT((l->end() - l->start()).dot(pts[out[i].tag + 1] - pts[out[i].tag]), 0.0);
+    EXPECT_GT((l->end() - l->start()).dot(pts[tag + 1] - pts[tag]), 0.0);
     if (i > 0) {
-      EXPECT_LT((out[i - 1].move.curve->point(1.0) - c.point(0.0)).norm(), 1e-12);
+      EXPECT_LT((out[i - 1].curve->point(1.0) - c.point(0.0)).norm(), 1e-12);
     }
   }
   EXPECT_GT(blends, 400);
@@ -151,28 +157,14 @@ RunResult run_polygon(bool blend, const Machine& machine, int sides = 4) {
     const double a = 2.0 * M_PI * i / sides;
     pts.emplace_back(20.0 * std::cos(a), 20.0 * std::sin(a), 0.0);
   }
-  plan::CornerBlender blender(blend, &machine);
-  plan::MotionPlanner planner(machine);
-  std::vector<plan::BlendedMove> ready;
-  std::vector<std::shared_ptr<const Curve>> curves;
-  std::deque<verify::ProgrammedCorner> corners;
-  std::vector<verify::PathMove> moves;
-  std::vector<verify::Sample> samples;
-  plan::Setpoint sp;
+  program::CornerBlender blender(blend, &machine);
+  std::vector<program::Move> moves;
   for (std::size_t i = 0; i + 1 < pts.size(); ++i)
-    blender.push(line_move(pts[i], pts[i + 1], 150.0, false, static_cast<long>(i + 1)), machine.path_tolerance_mm,
-                 i, ready);
-  blender.flush(ready);
-  for (const auto& bm : ready) {
-    planner.push(bm.move);
-    curves.push_back(bm.move.curve);
-    const verify::ProgrammedCorner* pc = nullptr;
-    if (bm.blend) pc = &corners.emplace_back(verify::ProgrammedCorner{bm.before, bm.corner, bm.after, bm.tolerance_mm});
-    moves.push_back({bm.move.curve.get(), bm.move.source_line, pc});
-  }
-  planner.finish();
-  while (planner.next(sp)) samples.push_back({sp.t_s, sp.position, sp.source_line});
-  EXPECT_TRUE(planner.done());
+    blender.push(line_move(pts[i], pts[i + 1], machine.path_tolerance_mm, 150.0, false, static_cast<long>(i + 1)),
+                 moves);
+  blender.flush(moves);
+  const std::vector<verify::Sample> samples = testing::plan_and_sample(machine, moves);
+  for (std::size_t i = 0; i < moves.size(); ++i) moves[i].id = static_cast<program::MoveId>(i);
   return {verify::check(samples, moves, machine), samples.back().t_s};
 }
 
@@ -204,8 +196,16 @@ TEST(CornerBlend, CheckerRejectsABlendBeyondItsTolerance) {
   // The blend of a corner with 0.05 mm, checked against a tolerance of 0.01 mm.
   const auto out = blend_polyline({{0, 0, 0}, {10, 0, 0}, {10, 10, 0}}, 0.05);
   ASSERT_EQ(out.size(), 3U);
-  const verify::ProgrammedCorner pc{out[1].before, out[1].corner, out[1].after, 0.01};
-  EXPECT_GT(verify::corner_deviation(*out[1].move.curve, pc), 0.04);
+  ASSERT_TRUE(out[1].corner);
+  program::ProgrammedCorner pc = *out[1].corner;
+  pc.tolerance_mm = 0.01;
+  EXPECT_GT(verify::blend_deviation(*out[1].curve, pc), 0.04);
+  std::vector<program::Move> moves = out;
+  moves[1].corner = pc;
+  const Machine machine = default_machine();
+  const verify::Report r = verify::check(testing::plan_and_sample(machine, moves), moves, machine);
+  EXPECT_FALSE(r.passed(machine));
+  EXPECT_GT(r.max_blend_deviation_ratio, 4.0);
 }
 
 }  // namespace

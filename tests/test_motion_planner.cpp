@@ -5,6 +5,8 @@
 #include <kontur/geometry/line_segment.hpp>
 #include <kontur/plan/motion_planner.hpp>
 
+#include "support/planner_run.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -12,21 +14,23 @@
 namespace kontur::plan {
 namespace {
 
+using trajectory::Setpoint;
+using program::Move;
+
 struct RunResult {
   std::vector<Setpoint> points;
 };
 
-RunResult run(const Machine& m, const std::vector<MoveInput>& moves) {
-  MotionPlanner planner(m);
+RunResult run(const Machine& m, const std::vector<Move>& moves) {
+  testing::PlannerRun p(m);
   RunResult r;
-  Setpoint sp;
   for (const auto& mv : moves) {
-    planner.push(mv);
-    while (planner.next(sp)) r.points.push_back(sp);
+    p.planner.push(mv);
+    p.drain(r.points);
   }
-  planner.finish();
-  while (planner.next(sp)) r.points.push_back(sp);
-  EXPECT_TRUE(planner.done());
+  p.planner.finish();
+  p.drain(r.points);
+  EXPECT_TRUE(p.sampler.done());
   return r;
 }
 
@@ -51,8 +55,8 @@ Usage usage(const RunResult& r, const Machine& m) {
   return u;
 }
 
-MoveInput line(Vec3 a, Vec3 b, double feed, long line_no = 0) {
-  return {std::make_shared<LineSegment>(a, b), feed, false, line_no};
+Move line(Vec3 a, Vec3 b, double feed, long line_no = 0) {
+  return program::move_along(std::make_shared<LineSegment>(a, b), feed, false, line_no);
 }
 
 TEST(MotionPlanner, SingleLineStartsAndEndsAtRestAtTheEndPoints) {
@@ -107,7 +111,7 @@ TEST(MotionPlanner, TangentLineArcLineKeepsItsSpeed) {
   f.e2 = {1, 0, 0};  // n = e1 x e2 = (0, 0, 1)
   const auto arc = std::make_shared<HelixArc>(f, R, std::numbers::pi / 2);
   const Vec3 arc_end = arc->point(1.0);
-  const RunResult r = run(m, {line({0, 0, 0}, {50, 0, 0}, 100.0), {arc, 100.0, false, 2},
+  const RunResult r = run(m, {line({0, 0, 0}, {50, 0, 0}, 100.0), program::move_along(arc, 100.0, false, 2),
                         line(arc_end, arc_end + Vec3(0, 50, 0), 100.0)});
   // Through both tangent junctions the speed stays up (no stop).
   double v_min_mid = 1e9;
@@ -135,7 +139,7 @@ TEST(MotionPlanner, StreamingGivesTheSameSetpointsAsPlanningAtOnce) {
   std::mt19937_64 rng(20261122);
   std::uniform_real_distribution<double> angle(-0.002, 0.002), length(0.5, 8.0), tiny(0.01, 0.1);
   for (int trial = 0; trial < 20; ++trial) {
-    std::vector<MoveInput> moves;
+    std::vector<Move> moves;
     Vec3 p = Vec3::Zero();
     double heading = 0.0;
     for (int i = 0; i < 60; ++i) {
@@ -146,12 +150,11 @@ TEST(MotionPlanner, StreamingGivesTheSameSetpointsAsPlanningAtOnce) {
       p = q;
     }
     // All moves first, then the setpoints.
-    MotionPlanner at_once(m);
-    for (const auto& mv : moves) at_once.push(mv);
-    at_once.finish();
+    testing::PlannerRun at_once(m);
+    for (const auto& mv : moves) at_once.planner.push(mv);
+    at_once.planner.finish();
     std::vector<Setpoint> expected;
-    Setpoint sp;
-    while (at_once.next(sp)) expected.push_back(sp);
+    at_once.drain(expected);
     // Streaming: setpoints drained after every move.
     const RunResult streamed = run(m, moves);
     ASSERT_EQ(streamed.points.size(), expected.size()) << "trial " << trial;
@@ -170,20 +173,19 @@ TEST(MotionPlanner, StreamingGivesTheSameSetpointsAsPlanningAtOnce) {
 // time, with setpoints carrying the dwell's line; the move after it starts from rest.
 TEST(MotionPlanner, DwellHoldsThePositionForItsTime) {
   const Machine m = default_machine();
-  MotionPlanner planner(m);
+  testing::PlannerRun p(m);
   std::vector<Setpoint> pts;
-  Setpoint sp;
-  planner.push(line({0, 0, 0}, {10, 0, 0}, 100.0, 1));
-  planner.dwell(0.25, 2);
-  planner.push(line({10, 0, 0}, {10, 10, 0}, 100.0, 3));
-  planner.finish();
-  while (planner.next(sp)) pts.push_back(sp);
-  ASSERT_TRUE(planner.done());
+  p.planner.push(line({0, 0, 0}, {10, 0, 0}, 100.0, 1));
+  p.planner.dwell(0.25, 2);
+  p.planner.push(line({10, 0, 0}, {10, 10, 0}, 100.0, 3));
+  p.planner.finish();
+  p.drain(pts);
+  ASSERT_TRUE(p.sampler.done());
   std::size_t held = 0;
   for (const auto& p : pts)
     if (p.source_line == 2) {
       ++held;
-      EXPECT_EQ(p.position, Vec3(10, 0, 0));
+      EXPECT_EQ(Vec3(p.position), Vec3(10, 0, 0));
       EXPECT_EQ(p.v_mm_s, 0.0);
     }
   // 0.25 s at 1 ms: 250 setpoints (one more or less where the stop falls between periods).

@@ -12,6 +12,8 @@
 #include <kontur/report/html_report.hpp>
 #include <kontur/verify/checker.hpp>
 #include <numbers>
+
+#include "support/planner_run.hpp"
 #include <random>
 
 namespace kontur {
@@ -132,16 +134,12 @@ TEST(Checker, PerBlockStatisticsMatchABruteForceRecomputation) {
       std::make_shared<HelixArc>(f, 20.0, std::numbers::pi / 2, 5.0),
       std::make_shared<LineSegment>(Vec3(70, 20, 5), Vec3(70, 0, 5)),
       std::make_shared<LineSegment>(Vec3(70, 0, 5), Vec3(40, -10, 0))};
-  plan::MotionPlanner p(m);
-  std::vector<verify::PathMove> moves;
+  std::vector<program::Move> moves;
   for (std::size_t i = 0; i < curves.size(); ++i) {
-    p.push({curves[i], 150.0, i == 2, static_cast<long>(10 * (i + 1))});
-    moves.push_back({curves[i].get(), static_cast<long>(10 * (i + 1))});
+    moves.push_back(program::move_along(curves[i], 150.0, i == 2, static_cast<long>(10 * (i + 1))));
+    moves.back().id = static_cast<program::MoveId>(i);
   }
-  p.finish();
-  std::vector<verify::Sample> s;
-  plan::Setpoint sp;
-  while (p.next(sp)) s.push_back({sp.t_s, sp.position, sp.source_line});
+  std::vector<verify::Sample> s = testing::plan_and_sample(m, moves);
   // Disturb one setpoint inside each block (by different amounts) so that every block has a
   // path error and jerk of its own.
   std::vector<std::size_t> bumped;
@@ -151,7 +149,7 @@ TEST(Checker, PerBlockStatisticsMatchABruteForceRecomputation) {
       if (s[k].source_line == moves[i].source_line) on.push_back(k);
     ASSERT_GT(on.size(), 20u);
     const std::size_t k = on[on.size() / 2];
-    s[k].position.z() += 1e-4 * static_cast<double>(i + 1);
+    s[k].position[2] += 1e-4 * static_cast<double>(i + 1);
     bumped.push_back(k);
   }
   std::vector<verify::SampleMeasure> seen;
@@ -180,7 +178,7 @@ TEST(Checker, PerBlockStatisticsMatchABruteForceRecomputation) {
         if (k >= 3)
           j = std::max(j, std::abs(x(k) - 3 * x(k - 1) + 3 * x(k - 2) - x(k - 3)) / (T * T * T) / ax.max_jerk);
       }
-      path = std::max(path, brute_distance(*curves[i], s[k].position));
+      path = std::max(path, brute_distance(*curves[i], Vec3(s[k].position)));
       EXPECT_EQ(seen[k].move, i) << "setpoint " << k;
     }
     EXPECT_EQ(b.source_line, moves[i].source_line);

@@ -3,6 +3,8 @@
 #include <kontur/io/setpoint_writer.hpp>
 #include <kontur/geometry/line_segment.hpp>
 
+#include "support/planner_run.hpp"
+
 #include <cstring>
 #include <sstream>
 
@@ -10,13 +12,11 @@ namespace kontur {
 namespace {
 
 std::string run(SetpointFormat f) {
-  plan::MotionPlanner p(default_machine());
-  p.push({std::make_shared<LineSegment>(Vec3(0, 0, 0), Vec3(10, 5, -2)), 50.0, false, 12});
-  p.finish();
+  const auto setpoints = testing::plan_and_sample(
+      default_machine(), {program::move_along(std::make_shared<LineSegment>(Vec3(0, 0, 0), Vec3(10, 5, -2)), 50.0, false, 12)});
   std::ostringstream out;
   SetpointWriter w(out, f, 1e-3);
-  plan::Setpoint s;
-  while (p.next(s)) w.write(s);
+  for (const auto& s : setpoints) w.write(s);
   return out.str();
 }
 

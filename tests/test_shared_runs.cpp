@@ -1,16 +1,14 @@
 // Issue 5's proof on real programs: every program of ../shared/data/gcode that Kontur reads is
-// planned on LinuxCNC's trajectory-planner test machines (linuxcnc-tp/configs) and its setpoints
-// are checked independently (verify::check): no axis velocity, acceleration or jerk above its
+// planned on LinuxCNC's trajectory-planner test machines (linuxcnc-tp/configs) by the library's
+// pipeline (kontur/pipeline.hpp, what `kontur run` calls) and its setpoints are checked
+// independently as they stream (verify::Checker): no axis velocity, acceleration or jerk above its
 // limit by more than 1e-6 relative, every setpoint on the path (1e-6 mm) and every chord within the
 // chord tolerance, start and end reached (1e-9 mm), no NaN. The programs the reader stops on are
 // listed with their messages in test_gcode_shared_programs.cpp.
 #include <gtest/gtest.h>
 #include <kontur/error.hpp>
-#include <kontur/gcode/reader.hpp>
 #include <kontur/machine.hpp>
-#include <kontur/plan/program_path.hpp>
-#include <kontur/plan/motion_planner.hpp>
-#include <kontur/plan/program_moves.hpp>
+#include <kontur/pipeline.hpp>
 #include <kontur/verify/checker.hpp>
 
 #include <deque>
@@ -65,27 +63,17 @@ TEST_P(SharedProgramRun, SetpointsKeepEveryLimitAndThePath) {
   const RunCase& rc = GetParam();
   Machine machine = read_machine((shared_dir / "linuxcnc-tp" / "configs" / rc.machine).string());
   if (rc.servo_period_s > 0.0) machine.servo_period_s = rc.servo_period_s;
-  plan::MotionPlanner planner(machine);
-  plan::ProgramPath path(machine, true);  // corners between lines blended within the G64 tolerance, as kontur run does
-  std::vector<verify::Sample> samples;
-  plan::Setpoint sp;
-  plan::ProgramEvents events;
-  events.move = [&](const plan::MoveInput& m) { planner.push(m); };
-  events.dwell = [&](double seconds, long line) { planner.dwell(seconds, line); };
-  events.block = [&](const gcode::Block&) {
-    while (planner.next(sp)) samples.push_back({sp.t_s, sp.position, sp.source_line});
-  };
+  // The library's pipeline, as `kontur run` calls it (corners blended within the G64 tolerance).
+  Pipeline pipeline(machine);
+  RunResult result;
   try {
-    path.read((shared_dir / rc.program).string(), events);
+    result = pipeline.run((shared_dir / rc.program).string());
   } catch (const InputError& e) {
     GTEST_SKIP() << "not read (see GcodeSharedPrograms): " << e.what();
   }
-  planner.finish();
-  while (planner.next(sp)) samples.push_back({sp.t_s, sp.position, sp.source_line});
-  const std::vector<verify::PathMove>& moves = path.check_moves();
-  if (moves.empty()) GTEST_SKIP() << "no motion";
-  ASSERT_TRUE(planner.done());
-  const verify::Report r = verify::check(samples, moves, machine);
+  if (pipeline.moves().empty()) GTEST_SKIP() << "no motion";
+  EXPECT_GT(result.setpoints, 0);
+  const verify::Report& r = result.check;
   std::string failures;
   for (const auto& f : r.failures(machine)) failures += "\n  " + f;
   EXPECT_TRUE(r.passed(machine)) << rc.program << " on " << rc.machine << ":" << failures;

@@ -3,6 +3,7 @@
 // convergence of the grid, every constraint held at the grid points, and the online planner never
 // faster than the reference (it is a lower bound).
 #include <gtest/gtest.h>
+#include "support/planner_run.hpp"
 #include <kontur/error.hpp>
 #include <kontur/geometry/helix_arc.hpp>
 #include <kontur/interpolate/curve_interpolator.hpp>
@@ -293,15 +294,10 @@ TEST(TimeOptimal, RefinementFindsTheSlowSpotOfANearCusp) {
 
 // The online planner on an acceleration-limited machine (jerk large) is never faster.
 double online_time(const Path& p, const Machine& m) {
-  MotionPlanner planner(m);
-  Setpoint sp, last;
-  for (std::size_t i = 0; i < p.moves.size(); ++i) {
-    planner.push({p.curves[i], p.moves[i].feed_mm_s, p.moves[i].exact_stop, static_cast<long>(i)});
-    while (planner.next(sp)) last = sp;
-  }
-  planner.finish();
-  while (planner.next(sp)) last = sp;
-  return last.t_s;
+  std::vector<program::Move> moves;
+  for (std::size_t i = 0; i < p.moves.size(); ++i)
+    moves.push_back(program::move_along(p.curves[i], p.moves[i].feed_mm_s, p.moves[i].exact_stop, static_cast<long>(i)));
+  return testing::plan_and_sample(m, moves).back().t_s;
 }
 
 TEST(TimeOptimal, OnlinePlannerIsNeverFaster) {

@@ -1,21 +1,17 @@
-// `kontur run PROGRAM`: Kontur's main job. The program's blocks (validated first: a program with
-// an error yields no setpoint) are planned on the machine and sampled at its servo period; the
-// setpoints go to a CSV or binary file (or stdout), and a JSON summary checks them independently.
+// `kontur run PROGRAM`: Kontur's main job, the library's Pipeline (kontur/pipeline.hpp). The
+// program's blocks (validated first: a program with an error yields no setpoint) are planned on
+// the machine and sampled at its servo period; the setpoints go to a CSV or binary file (or
+// stdout) as they are made, checked independently on the way, and a JSON summary follows.
 #include "commands.hpp"
-#include "time_optimal_summary.hpp"
-#include "check_summary.hpp"
 #include "report_output.hpp"
 #include "run_report.hpp"
+#include "summary_output.hpp"
 
 #include <kontur/error.hpp>
-#include <kontur/gcode/reader.hpp>
 #include <kontur/io/atomic_file.hpp>
 #include <kontur/io/setpoint_writer.hpp>
-#include <kontur/geometry/length.hpp>
 #include <kontur/machine.hpp>
-#include <kontur/plan/motion_planner.hpp>
-#include <kontur/plan/program_path.hpp>
-#include <kontur/verify/checker.hpp>
+#include <kontur/pipeline.hpp>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -109,35 +105,29 @@ bool run_program(const RunOptions& o) {
   }
   if (o.summary == "-" && (o.output == "-" || o.report == "-"))
     throw CLI::ValidationError("--summary", "--summary - needs -o FILE and no --report -: stdout is taken");
-  const Machine machine = o.machine.empty() ? default_machine() : read_machine(o.machine);
+  Machine machine = o.machine.empty() ? default_machine() : read_machine(o.machine);
   if (o.machine.empty()) validate(machine);
   Progress progress(!o.quiet);
   const long total_lines = progress.enabled() ? count_lines(o.program) : 0;
   const SetpointFormat format = o.format == "binary" ? SetpointFormat::binary : SetpointFormat::csv;
-  plan::MotionPlanner planner(machine);
-  plan::ProgramPath path(machine, !o.no_blend);  // the path planned, kept for the check
-  std::vector<verify::Sample> samples;
+  PipelineOptions options;
+  options.blend = !o.no_blend;
+  options.time_optimal = o.time_optimal;
+  Pipeline pipeline(std::move(machine), options);
+  std::unique_ptr<RunReportBuilder> builder;
+  if (!o.report.empty()) builder = std::make_unique<RunReportBuilder>(pipeline.machine(), pipeline.moves());
+  RunResult result;
   auto produce = [&](std::ostream& out) {
-    SetpointWriter writer(out, format, machine.servo_period_s);
-    plan::Setpoint sp;
-    auto drain = [&] {
-      while (planner.next(sp)) {
-        writer.write(sp);
-        samples.push_back({sp.t_s, sp.position, sp.source_line});
-      }
-    };
-    plan::ProgramEvents events;
-    events.move = [&](const plan::MoveInput& m) { planner.push(m); };
-    events.dwell = [&](double seconds, long line) { planner.dwell(seconds, line); };
-    events.block = [&](const gcode::Block& b) {
-      drain();
-      if (total_lines > 0)
-        progress.update("planning", static_cast<double>(b.location.line) / static_cast<double>(total_lines),
-                        fmt::format("line {} of {}", b.location.line, total_lines));
-    };
-    path.read(o.program, events);
-    planner.finish();
-    drain();
+    SetpointWriter writer(out, format, pipeline.machine().servo_period_s);
+    PipelineEvents events;
+    events.setpoint = [&](const trajectory::Setpoint& sp) { writer.write(sp); };
+    if (builder) events.observer = [&](const verify::SampleMeasure& m) { builder->observe(m); };
+    if (total_lines > 0)
+      events.progress = [&](long line) {
+        progress.update("running", static_cast<double>(line) / static_cast<double>(total_lines),
+                        fmt::format("line {} of {}", line, total_lines));
+      };
+    result = pipeline.run(o.program, events);
   };
   if (o.output == "-") {
     produce(std::cout);
@@ -145,33 +135,14 @@ bool run_program(const RunOptions& o) {
     write_file_atomically(o.output, produce, inputs);
   }
   progress.clear();
-  std::unique_ptr<RunReportBuilder> builder;
-  const std::vector<RunMove> run_moves = run_moves_of(path);
-  if (!o.report.empty()) builder = std::make_unique<RunReportBuilder>(machine, run_moves);
-  const std::size_t n = samples.size();
-  const verify::Report r = verify::check(samples, path.check_moves(), machine, [&](const verify::SampleMeasure& m) {
-    if (builder) builder->observe(m);
-    if (progress.enabled() && (m.index & 1023) == 0)
-      progress.update("checking", static_cast<double>(m.index) / static_cast<double>(n),
-                      fmt::format("setpoint {} of {}", m.index, n));
-  });
-  progress.clear();
-  nlohmann::ordered_json j =
-      check_summary(o.program, machine, r, run_moves, samples.empty() ? 0.0 : samples.back().t_s);
-  if (o.time_optimal) {
-    std::vector<plan::TimeOptimalMove> reference_moves;  // along the blended path
-    for (const plan::PathEntry& e : path.entries())
-      reference_moves.push_back({e.move.curve.get(), e.move.feed_mm_s, e.move.exact_stop});
-    add_time_optimal_summary(j, reference_moves, machine, j["total_time_s"].get<double>());
-  }
   if (builder) {
-    const report::Report rep = builder->build(r, samples, o.program);
+    const report::Report rep = builder->build(result.check, result.total_time_s, o.program);
     std::vector<std::filesystem::path> report_inputs = inputs;
     if (o.output != "-") report_inputs.emplace_back(o.output);
     report::write_html_report(rep, o.report, report_inputs, RunReportBuilder::render_options());
   }
-  write_summary(j, o.summary, o.quiet, inputs);
-  return r.passed(machine);
+  write_summary(result.summary_json, o.summary, o.quiet, inputs);
+  return result.passed;
 }
 
 }  // namespace

@@ -68,26 +68,15 @@ std::string sci(double v) { return v == 0.0 ? std::string("0") : fmt::format("{:
 
 }  // namespace
 
-std::vector<RunMove> run_moves_of(const plan::ProgramPath& path) {
-  std::vector<RunMove> out;
-  out.reserve(path.entries().size());
-  for (const plan::PathEntry& e : path.entries())
-    out.push_back({e.move.source_line, e.type, e.length_mm, e.move.feed_mm_s});
-  return out;
-}
-
-RunReportBuilder::RunReportBuilder(const Machine& machine, std::vector<RunMove> moves)
+RunReportBuilder::RunReportBuilder(const Machine& machine, const std::vector<program::Move>& moves)
     : machine_(machine),
-      moves_(std::move(moves)),
-      max_speed_mm_s_(moves_.size(), 0.0),
+      moves_(moves),
       path_(4, kBuckets),
       speed_(2, kBuckets),
       velocity_(3, kBuckets),
       acceleration_(3, kBuckets),
       jerk_(3, kBuckets),
-      error_(2, kBuckets) {
-  for (const RunMove& m : moves_) path_length_mm_ += m.length_mm;
-}
+      error_(2, kBuckets) {}
 
 report::RenderOptions RunReportBuilder::render_options() {
   report::RenderOptions o;
@@ -99,9 +88,10 @@ void RunReportBuilder::observe(const verify::SampleMeasure& s) {
   const double speed = s.velocity.norm();  // chord length of the period over T [mm/s]
   // The commanded feed, as far as the machine can go (a program may command more).
   const double feed = s.move < moves_.size() ? std::min(moves_[s.move].feed_mm_s, machine_.max_feed_mm_s) : 0.0;
-  if (s.move < max_speed_mm_s_.size()) max_speed_mm_s_[s.move] = std::max(max_speed_mm_s_[s.move], speed);
+  if (s.move >= max_speed_mm_s_.size()) max_speed_mm_s_.resize(s.move + 1, 0.0);
+  max_speed_mm_s_[s.move] = std::max(max_speed_mm_s_[s.move], speed);
   max_speed_all_ = std::max(max_speed_all_, speed);
-  const double p[4] = {s.position.x(), s.position.y(), s.position.z(), speed};
+  const double p[4] = {s.position[0], s.position[1], s.position[2], speed};
   path_.add(s.t_s, p);
   const double sf[2] = {speed, feed};
   speed_.add(s.t_s, sf);
@@ -112,13 +102,13 @@ void RunReportBuilder::observe(const verify::SampleMeasure& s) {
   error_.add(s.t_s, e);
 }
 
-report::Report RunReportBuilder::build(const verify::Report& r, const std::vector<verify::Sample>& samples,
-                                       const std::string& program) const {
+report::Report RunReportBuilder::build(const verify::Report& r, double total_s, const std::string& program) const {
   report::Report rep;
   rep.title = fmt::format("kontur run {}", program);
   rep.subtitle = invocation();
   const bool passed = r.passed(machine_);
-  const double total_s = samples.empty() ? 0.0 : samples.back().t_s;
+  double path_length_mm = 0.0;
+  for (const program::Move& m : moves_) path_length_mm += m.length_mm;
   auto& sum = rep.summary;
   sum.push_back({"result", passed ? "PASS: every limit held" : "FAIL: a limit was exceeded"});
   for (const auto& f : r.failures(machine_)) sum.push_back({"failure", f});
@@ -126,7 +116,7 @@ report::Report RunReportBuilder::build(const verify::Report& r, const std::vecto
   sum.push_back({"machine", machine_.source});
   sum.push_back({"servo period", fmt::format("{} s", num(machine_.servo_period_s))});
   sum.push_back({"total time", fmt::format("{} s", fixed(total_s, 6))});
-  sum.push_back({"path length (rapids included)", fmt::format("{} mm", fixed(path_length_mm_, 6))});
+  sum.push_back({"path length (rapids included)", fmt::format("{} mm", fixed(path_length_mm, 6))});
   sum.push_back({"moves / setpoints", fmt::format("{} / {}", moves_.size(), r.samples)});
   sum.push_back({"max path speed |dp|/T", fmt::format("{} mm/s", fixed(max_speed_all_, 6))});
   auto axis = [](char c) { return c == ' ' ? std::string() : fmt::format(" (axis {})", c); };
@@ -158,7 +148,7 @@ report::Report RunReportBuilder::build(const verify::Report& r, const std::vecto
     const bool labelled = r.blocks.size() <= kMaxLabelledBlocks;
     for (const auto& b : r.blocks) {
       if (b.samples == 0) continue;
-      starts.points_mm.push_back(samples[static_cast<std::size_t>(b.first_sample)].position);
+      starts.points_mm.push_back(b.first_point);
       if (labelled) starts.labels.push_back(fmt::format("N{}", b.source_line));
     }
     if (!starts.points_mm.empty()) rep.polylines.push_back(std::move(starts));
@@ -230,13 +220,14 @@ report::Report RunReportBuilder::build(const verify::Report& r, const std::vecto
       const auto& b = r.blocks[i];
       const auto& m = moves_[i];
       const bool has = b.samples > 0;
+      const double max_speed = i < max_speed_mm_s_.size() ? max_speed_mm_s_[i] : 0.0;
       t.rows.push_back({fmt::format("{}", i + 1), fmt::format("{}", b.source_line), m.type, fixed(m.length_mm, 6),
                         fixed(m.feed_mm_s, 3), has ? fixed(b.t_first_s, 6) : "-",
                         has ? fixed(b.t_last_s - b.t_first_s, 6) : "-", fmt::format("{}", b.samples),
-                        fixed(max_speed_mm_s_[i], 3), ratio(b.max_velocity_ratio), ratio(b.max_acceleration_ratio),
+                        fixed(max_speed, 3), ratio(b.max_velocity_ratio), ratio(b.max_acceleration_ratio),
                         ratio(b.max_jerk_ratio), sci(b.max_path_error_mm), sci(b.max_chord_error_mm)});
       if (has) {
-        t.links.push_back({b.t_first_s, samples[static_cast<std::size_t>(b.first_sample)].position, b.t_last_s});
+        t.links.push_back({b.t_first_s, b.first_point, b.t_last_s});
         t_prev = b.t_last_s;
       } else {
         t.links.push_back({t_prev, std::nullopt, std::nullopt});

@@ -2,16 +2,14 @@
 // (Kontur's CSV or binary, or another planner's written in the same format): finite differences
 // of the setpoints against the machine's axis limits, the distance of every setpoint and every
 // chord from the programmed path, the start and end. Nothing of the planner is used.
-#include "check_summary.hpp"
 #include "commands.hpp"
 #include "run_report.hpp"
+#include "summary_output.hpp"
 
 #include <kontur/error.hpp>
 #include <kontur/io/atomic_file.hpp>
-#include <kontur/io/setpoint_reader.hpp>
 #include <kontur/machine.hpp>
-#include <kontur/plan/program_path.hpp>
-#include <kontur/verify/checker.hpp>
+#include <kontur/pipeline.hpp>
 
 #include <fmt/format.h>
 
@@ -37,36 +35,22 @@ bool verify_setpoints(const VerifyOptions& o) {
   std::vector<std::filesystem::path> inputs = {o.program, o.setpoints};
   if (!o.machine.empty()) inputs.emplace_back(o.machine);
   if (!o.report.empty()) check_output_not_input(o.report, inputs);
-  const Machine machine = o.machine.empty() ? default_machine() : read_machine(o.machine);
+  Machine machine = o.machine.empty() ? default_machine() : read_machine(o.machine);
   if (o.machine.empty()) validate(machine);
-  // The path, as `kontur run` builds it: the same corner blends, each checked against the
-  // programmed lines it replaces.
-  plan::ProgramPath path(machine, !o.no_blend);
-  path.read(o.program, {});
-  const std::vector<verify::PathMove>& moves = path.check_moves();
-  const std::vector<RunMove> run_moves = run_moves_of(path);
-  if (moves.empty())
-    throw InputError("program-no-motion", fmt::format("{}: the program has no move to check setpoints against", o.program));
-  const SetpointFile file = read_setpoints(o.setpoints);
-  if (file.samples.empty())
-    throw InputError("setpoints-empty", fmt::format("{}: the file holds no setpoint", o.setpoints));
-  if (file.period_s && std::abs(*file.period_s - machine.servo_period_s) > 1e-12 * machine.servo_period_s)
-    throw InputError("setpoints-period",
-                     fmt::format("{}: written at a servo period of {} s, but the machine's is {} s (give --machine)",
-                                 o.setpoints, *file.period_s, machine.servo_period_s));
+  PipelineOptions options;
+  options.blend = !o.no_blend;
+  Pipeline pipeline(std::move(machine), options);
   std::unique_ptr<RunReportBuilder> builder;
-  if (!o.report.empty()) builder = std::make_unique<RunReportBuilder>(machine, run_moves);
-  const verify::Report r = verify::check(file.samples, moves, machine, [&](const verify::SampleMeasure& m) {
-    if (builder) builder->observe(m);
-  });
-  nlohmann::ordered_json j = check_summary(o.program, machine, r, run_moves, file.samples.back().t_s);
-  j["setpoint_file"] = o.setpoints;
+  if (!o.report.empty()) builder = std::make_unique<RunReportBuilder>(pipeline.machine(), pipeline.moves());
+  PipelineEvents events;
+  if (builder) events.observer = [&](const verify::SampleMeasure& m) { builder->observe(m); };
+  const RunResult result = pipeline.verify(o.program, o.setpoints, events);
   if (builder) {
-    const report::Report rep = builder->build(r, file.samples, o.program);
+    const report::Report rep = builder->build(result.check, result.total_time_s, o.program);
     report::write_html_report(rep, o.report, inputs, RunReportBuilder::render_options());
   }
-  write_summary(j, o.summary, o.quiet, inputs);
-  return r.passed(machine);
+  write_summary(result.summary_json, o.summary, o.quiet, inputs);
+  return result.passed;
 }
 
 }  // namespace

@@ -187,9 +187,12 @@ inline constexpr double blend_min_turn_cos = -0.5;
 inline constexpr double blend_max_trim_share = 0.45;
 /// Share of the tolerance a blend is made to use (the rest covers the sampling of its deviation).
 inline constexpr double blend_tolerance_share = 0.999;
-/// Samples of a blend (plus a golden-section search around the largest) when its largest distance
-/// from the programmed lines is measured, by the blender and independently by the checker.
+/// Samples of a blend (plus a golden-section search around the largest) when the blender measures
+/// its largest distance from the programmed lines to size it (geometry/corner_blend_curve.hpp).
 inline constexpr int blend_deviation_samples = 256;
+/// Samples of a blend (plus successive parabolic interpolation around every local maximum) when
+/// the checker measures its distance from the programmed lines, its own way (verify::blend_deviation).
+inline constexpr int check_blend_samples = 1024;
 /// The checker accepts a blend whose deviation exceeds its tolerance by at most this, relative.
 inline constexpr double blend_deviation_relative = 1e-9;
 

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <string_view>
 
 namespace kontur {
@@ -21,8 +22,7 @@ T get(const char* p) {
   return v;
 }
 
-SetpointFile read_binary(std::ifstream& in, const std::string& path) {
-  SetpointFile f;
+std::optional<double> read_binary(std::ifstream& in, const std::string& path, const SetpointVisitor& visit) {
   std::array<char, 24> h{};
   in.read(h.data(), 24);
   if (in.gcount() != 24)
@@ -32,7 +32,8 @@ SetpointFile read_binary(std::ifstream& in, const std::string& path) {
     throw InputError("setpoints-version", fmt::format("{}: binary setpoints version {} with records of {} bytes: "
                                                       "this Kontur reads version {} with 48-byte records",
                                                       path, version, size, setpoint_binary_version));
-  f.period_s = get<double>(h.data() + 16);
+  const double period_s = get<double>(h.data() + 16);
+  trajectory::Setpoint sp;
   std::array<char, 48> r{};
   for (long k = 0;; ++k) {
     in.read(r.data(), 48);
@@ -40,15 +41,17 @@ SetpointFile read_binary(std::ifstream& in, const std::string& path) {
     if (in.gcount() != 48)
       throw InputError("setpoints-truncated",
                        fmt::format("{}: record {} is cut short ({} of 48 bytes)", path, k + 1, in.gcount()));
-    f.samples.push_back({get<double>(r.data()), Vec3(get<double>(r.data() + 8), get<double>(r.data() + 16),
-                                                     get<double>(r.data() + 24)),
-                         static_cast<long>(get<std::int64_t>(r.data() + 40))});
+    sp.t_s = get<double>(r.data());
+    sp.position = AxisVector(Vec3(get<double>(r.data() + 8), get<double>(r.data() + 16), get<double>(r.data() + 24)));
+    sp.v_mm_s = get<double>(r.data() + 32);
+    sp.source_line = static_cast<long>(get<std::int64_t>(r.data() + 40));
+    visit(sp);
   }
-  return f;
+  return period_s;
 }
 
-SetpointFile read_csv(std::ifstream& in, const std::string& path) {
-  SetpointFile f;
+std::optional<double> read_csv(std::ifstream& in, const std::string& path, const SetpointVisitor& visit) {
+  trajectory::Setpoint sp;
   std::string line;
   long n = 1;
   if (!std::getline(in, line) || (line != "t,x,y,z,v,block" && line != "t,x,y,z,v,block\r"))
@@ -76,14 +79,18 @@ SetpointFile read_csv(std::ifstream& in, const std::string& path) {
                                      path, n, c + 1, line.substr(0, 80)));
       p = field_end + 1;
     }
-    f.samples.push_back({v[0], Vec3(v[1], v[2], v[3]), block});
+    sp.t_s = v[0];
+    sp.position = AxisVector(Vec3(v[1], v[2], v[3]));
+    sp.v_mm_s = v[4];
+    sp.source_line = block;
+    visit(sp);
   }
-  return f;
+  return std::nullopt;
 }
 
 }  // namespace
 
-SetpointFile read_setpoints(const std::string& path) {
+std::optional<double> for_each_setpoint(const std::string& path, const SetpointVisitor& visit) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("file-missing", fmt::format("{}: cannot open the setpoint file", path));
   std::array<char, 8> magic{};
@@ -91,7 +98,22 @@ SetpointFile read_setpoints(const std::string& path) {
   const bool binary = in.gcount() == 8 && std::string_view(magic.data(), 8) == std::string_view(setpoint_binary_magic, 8);
   in.clear();
   in.seekg(0);
-  return binary ? read_binary(in, path) : read_csv(in, path);
+  return binary ? read_binary(in, path, visit) : read_csv(in, path, visit);
+}
+
+std::optional<double> setpoint_file_period(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("file-missing", fmt::format("{}: cannot open the setpoint file", path));
+  std::array<char, 24> h{};
+  in.read(h.data(), 24);
+  if (in.gcount() != 24 || std::string_view(h.data(), 8) != std::string_view(setpoint_binary_magic, 8)) return std::nullopt;
+  return get<double>(h.data() + 16);
+}
+
+SetpointFile read_setpoints(const std::string& path) {
+  SetpointFile f;
+  f.period_s = for_each_setpoint(path, [&](const trajectory::Setpoint& s) { f.samples.push_back(s); });
+  return f;
 }
 
 }  // namespace kontur

@@ -31,13 +31,13 @@ SetpointWriter::SetpointWriter(std::ostream& out, SetpointFormat format, double 
   }
 }
 
-void SetpointWriter::write(const plan::Setpoint& s) {
+void SetpointWriter::write(const trajectory::Setpoint& s) {
   ++count_;
   if (format_ == SetpointFormat::binary) {
     put<double>(*out_, s.t_s);
-    put<double>(*out_, s.position.x());
-    put<double>(*out_, s.position.y());
-    put<double>(*out_, s.position.z());
+    put<double>(*out_, s.position[0]);
+    put<double>(*out_, s.position[1]);
+    put<double>(*out_, s.position[2]);
     put<double>(*out_, s.v_mm_s);
     put<std::int64_t>(*out_, s.source_line);
     return;
@@ -47,8 +47,8 @@ void SetpointWriter::write(const plan::Setpoint& s) {
   // rounding of the file (1e-9 mm would show as 8e-9 / T^3 = 8 mm/s^3 at T = 1 ms).
   auto z = [](double v) { return v == 0.0 ? 0.0 : v; };
   fmt::memory_buffer b;
-  fmt::format_to(std::back_inserter(b), "{:.9f},{},{},{},{:.6f},{}\n", z(s.t_s), z(s.position.x()),
-                 z(s.position.y()), z(s.position.z()), z(s.v_mm_s), s.source_line);
+  fmt::format_to(std::back_inserter(b), "{:.9f},{},{},{},{:.6f},{}\n", z(s.t_s), z(s.position[0]),
+                 z(s.position[1]), z(s.position[2]), z(s.v_mm_s), s.source_line);
   out_->write(b.data(), static_cast<std::streamsize>(b.size()));
 }
 

@@ -79,10 +79,11 @@ Machine planning_machine(Machine m) {
 
 }  // namespace
 
-MotionPlanner::MotionPlanner(const Machine& machine)
-    : machine_(planning_machine(machine)), period_(machine.servo_period_s) {}
+MotionPlanner::MotionPlanner(const Machine& machine, trajectory::Trajectory& out)
+    : machine_(planning_machine(machine)), period_(machine.servo_period_s), out_(&out) {}
 
-void MotionPlanner::push(const MoveInput& move) {
+void MotionPlanner::push(const program::Move& move) {
+  out_->reclaim();
   auto table = std::make_shared<const ArcLengthTable>(*move.curve);
   const double length = table->length_mm();
   if (!(length > 0.0)) return;
@@ -100,18 +101,23 @@ void MotionPlanner::push(const MoveInput& move) {
     const MovePiece& p = pieces[i];
     const bool last = i + 1 == pieces.size();
     Piece piece;
-    piece.curve = move.curve;
-    piece.table = table;
-    piece.u0 = p.u0;
-    piece.u1 = p.u1;
-    piece.s0 = p.s0_mm;
-    piece.s1 = p.s1_mm;
-    piece.source_line = move.source_line;
+    trajectory::Segment& seg = piece.segment;
+    seg.curve = move.curve;
+    seg.table = table;
+    seg.u0 = p.u0;
+    seg.u1 = p.u1;
+    seg.s0_mm = p.s0_mm;
+    seg.s1_mm = p.s1_mm;
+    seg.move = move.id;
+    seg.source_line = move.source_line;
     piece.geometry = p.geometry;
     piece.feed_mm_s = move.feed_mm_s;
     piece.start_share = i == 0 ? in.jerk_share : pieces[i - 1].end.jerk_share;
     if (initial_hold_s_ > 0.0) {
-      piece.hold_before_s = initial_hold_s_;
+      seg.hold_before_s = initial_hold_s_;
+      seg.hold_before_line = initial_hold_line_;
+      // a dwell after moves already released at rest counts to the move before it
+      seg.hold_before_move = last_move_ != program::no_move ? last_move_ : move.id;
       initial_hold_s_ = 0.0;
     }
     MoveConstraint mc;
@@ -130,6 +136,7 @@ void MotionPlanner::push(const MoveInput& move) {
   }
   last_end_ = c.derivatives_left(c.u_max(), 2);
   last_exact_stop_ = move.exact_stop;
+  last_move_ = move.id;
   release_ready();
 }
 
@@ -143,14 +150,14 @@ void MotionPlanner::settle_last(double end_share) {
 
 void MotionPlanner::dwell(double seconds, long source_line) {
   if (finished_ || !(seconds > 0.0)) return;
-  if (pending_.empty()) {  // before the first move
+  if (pending_.empty()) {  // before the first move, or after moves already released at rest
     initial_hold_s_ += seconds;
     initial_hold_line_ = source_line;
     return;
   }
-  Piece& p = pending_.back();
+  trajectory::Segment& p = pending_.back().segment;
   p.hold_after_s += seconds;
-  p.hold_line = source_line;
+  p.hold_after_line = source_line;
   lookahead_.limit_last_end_velocity(0.0);
   settle_last(0.0);  // it ends at rest: no junction
   last_exact_stop_ = true;  // the next move starts from rest
@@ -167,76 +174,10 @@ void MotionPlanner::release_ready() {
   while (lookahead_.ready()) {
     Piece p = std::move(pending_.front());
     pending_.pop_front();
-    p.profile = lookahead_.pop();
-    planned_.push_back(std::move(p));
+    p.segment.profile = lookahead_.pop();
+    out_->append(std::move(p.segment));
   }
-}
-
-bool MotionPlanner::next(Setpoint& out) noexcept {
-  if (end_given_) return false;
-  if (!started_) {
-    if (planned_.empty()) {
-      if (finished_) end_given_ = true;  // an empty program: nothing to give
-      return false;
-    }
-    started_ = true;
-    const Piece& m = planned_.front();
-    u_ = m.u0;
-    s_ = m.s0;
-    t_move_ = 0.0;
-    last_position_ = m.curve->point(u_);
-    const bool holding = m.hold_before_s > 0.0;
-    out = {0.0, last_position_, holding ? 0.0 : m.profile.sample(0.0).v,
-           holding ? initial_hold_line_ : m.source_line};
-    return true;
-  }
-  double t_move = t_move_ + period_;
-  // Move on to the following pieces while this cycle lies beyond the current one.
-  while (!planned_.empty() && t_move >= planned_.front().duration()) {
-    if (planned_.size() < 2) {
-      if (!finished_ || !pending_.empty()) return false;  // wait for the look-ahead
-      // The last piece: its end at rest is the last setpoint.
-      const Piece& m = planned_.front();
-      t_ += period_;
-      last_position_ = m.curve->point(m.u1);
-      out = {t_, last_position_, 0.0, m.hold_after_s > 0.0 ? m.hold_line : m.source_line};
-      end_given_ = true;
-      return true;
-    }
-    // (t_move_ too: if the look-ahead makes us wait below, the next call goes on from here)
-    t_move -= planned_.front().duration();
-    t_move_ -= planned_.front().duration();
-    planned_.pop_front();
-    u_ = planned_.front().u0;
-    s_ = planned_.front().s0;
-  }
-  if (planned_.empty()) return false;
-  const Piece& m = planned_.front();
-  const double t_profile = t_move - m.hold_before_s;
-  PathState st;
-  long line = m.source_line;
-  if (t_profile <= 0.0) {
-    line = initial_hold_line_;  // dwelling before the first move
-  } else if (t_profile >= m.profile.duration()) {
-    st.s = m.profile.distance();  // dwelling after the piece
-    line = m.hold_line;
-  } else {
-    st = m.profile.sample(t_profile);
-  }
-  const double s_target = m.s0 + st.s;
-  if (st.s >= m.profile.distance() || s_target >= m.s1) {
-    u_ = m.u1;
-  } else if (s_target > s_) {
-    // (u_after starts from the Taylor series of u(s) at u_; no hint needed: it falls back to the
-    // table interval's linear guess)
-    u_ = m.table->u_after(u_, s_, s_target, u_);
-  }
-  s_ = std::max(s_, s_target);
-  t_move_ = t_move;
-  t_ += period_;
-  last_position_ = m.curve->point(u_);
-  out = {t_, last_position_, st.v, line};
-  return true;
+  if (finished_ && pending_.empty()) out_->close();
 }
 
 }  // namespace kontur::plan

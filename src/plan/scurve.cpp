@@ -78,26 +78,6 @@ double braking_velocity(double v_after, double distance, const PathLimits& l) no
   return lo;
 }
 
-PathState ScurveProfile::sample(double t) const noexcept {
-  if (!(t > 0.0)) return start_[0];
-  if (t >= start_time_[7]) return start_[7];
-  int k = 0;
-  while (k < 6 && t >= start_time_[static_cast<std::size_t>(k + 1)]) ++k;
-  const auto kk = static_cast<std::size_t>(k);
-  const double tau = t - start_time_[kk];
-  const PathState& p = start_[kk];
-  const double j = jerk_[kk];
-  PathState out;
-  out.j = j;
-  out.a = p.a + j * tau;
-  out.v = p.v + p.a * tau + 0.5 * j * tau * tau;
-  out.s = p.s + p.v * tau + 0.5 * p.a * tau * tau + j * tau * tau * tau / 6.0;
-  // Rounding must not move past the end.
-  out.s = std::min(out.s, distance_);
-  out.v = std::max(out.v, 0.0);
-  return out;
-}
-
 ScurveProfile plan_scurve(double distance, double v0, double v1, const PathLimits& l) {
   const double amax = l.max_acceleration, jmax = l.max_jerk, vmax = l.max_velocity;
   distance = std::max(distance, 0.0);
@@ -142,26 +122,8 @@ ScurveProfile plan_scurve(double distance, double v0, double v1, const PathLimit
   }
   const Change up = change_phases(v0, vp, amax, jmax);
   const Change down = change_phases(v1, vp, amax, jmax);
-  ScurveProfile p;
-  p.distance_ = distance;
-  p.peak_ = vp;
   const std::array<double, 7> durations = {up.tj, up.ta, up.tj, cruise, down.tj, down.ta, down.tj};
-  p.jerk_ = {jmax, 0.0, -jmax, 0.0, -jmax, 0.0, jmax};
-  p.start_[0] = {0.0, v0, 0.0, 0.0};
-  p.start_time_[0] = 0.0;
-  for (std::size_t k = 0; k < 7; ++k) {
-    const PathState& s = p.start_[k];
-    const double d = durations[k], j = p.jerk_[k];
-    PathState e;
-    e.a = s.a + j * d;
-    e.v = s.v + s.a * d + 0.5 * j * d * d;
-    e.s = s.s + s.v * d + 0.5 * s.a * d * d + j * d * d * d / 6.0;
-    p.start_[k + 1] = e;
-    p.start_time_[k + 1] = p.start_time_[k] + d;
-  }
-  // The end is exact by definition: the phases cover the distance up to rounding.
-  p.start_[7] = {distance, v1, 0.0, 0.0};
-  return p;
+  return ScurveProfile::from_phases(distance, v0, v1, vp, durations, jmax);
 }
 
 }  // namespace kontur::plan

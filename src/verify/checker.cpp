@@ -69,41 +69,50 @@ double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) noexcept {
 
 }  // namespace
 
-double corner_deviation(const Curve& c, const ProgrammedCorner& pc) {
+double blend_deviation(const Curve& c, const program::ProgrammedCorner& pc) {
   auto dev = [&](double u) {
     const Vec3 p = c.point(u);
     return std::min(segment_distance(p, pc.before, pc.corner), segment_distance(p, pc.corner, pc.after));
   };
-  const int n = tolerances::blend_deviation_samples;
+  const int n = tolerances::check_blend_samples;
   const double u0 = c.u_min(), h = (c.u_max() - c.u_min()) / n;
-  double best = 0.0;
-  int best_k = 0;
-  for (int k = 0; k <= n; ++k) {
-    const double v = dev(u0 + h * k);
-    if (v > best) {
-      best = v;
-      best_k = k;
+  std::vector<double> f(static_cast<std::size_t>(n) + 1);
+  for (int k = 0; k <= n; ++k) f[static_cast<std::size_t>(k)] = dev(u0 + h * k);
+  double best = *std::max_element(f.begin(), f.end());
+  // Every interior local maximum of the samples: successive parabolic interpolation through the
+  // best three points, kept inside the bracket [u_{k-1}, u_{k+1}] (bisection when the parabola
+  // leaves it or is flat).
+  for (int k = 1; k < n; ++k) {
+    const auto kk = static_cast<std::size_t>(k);
+    if (!(f[kk] >= f[kk - 1] && f[kk] >= f[kk + 1])) continue;
+    double a = u0 + h * (k - 1), b = u0 + h * (k + 1);
+    double x = u0 + h * k, fx = f[kk];
+    double w = a, fw = f[kk - 1], v = b, fv = f[kk + 1];
+    for (int i = 0; i < 80 && b - a > 1e-15 * std::max(1.0, std::abs(x)); ++i) {
+      const double num = (x - w) * (x - w) * (fx - fv) - (x - v) * (x - v) * (fx - fw);
+      const double den = (x - w) * (fx - fv) - (x - v) * (fx - fw);
+      double t = den != 0.0 ? x - 0.5 * num / den : 0.5 * (a + b);
+      if (!(t > a && t < b) || t == x) t = x < 0.5 * (a + b) ? 0.5 * (x + b) : 0.5 * (a + x);
+      const double ft = dev(t);
+      best = std::max(best, ft);
+      if (ft >= fx) {
+        (t < x ? b : a) = x;
+        v = w;
+        fv = fw;
+        w = x;
+        fw = fx;
+        x = t;
+        fx = ft;
+      } else {
+        (t < x ? a : b) = t;
+        v = w;
+        fv = fw;
+        w = t;
+        fw = ft;
+      }
     }
   }
-  double lo = std::max(c.u_min(), u0 + h * (best_k - 1)), hi = std::min(c.u_max(), u0 + h * (best_k + 1));
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo), f1 = dev(x1), f2 = dev(x2);
-  for (int i = 0; i < 60; ++i) {
-    if (f1 < f2) {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + g * (hi - lo);
-      f2 = dev(x2);
-    } else {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - g * (hi - lo);
-      f1 = dev(x1);
-    }
-  }
-  return std::max({best, f1, f2});
+  return best;
 }
 
 bool Report::passed(const Machine& machine) const noexcept {
@@ -135,34 +144,179 @@ std::vector<std::string> Report::failures(const Machine& machine) const {
   return f;
 }
 
-Report check(const std::vector<Sample>& s, const std::vector<PathMove>& moves, const Machine& machine) {
-  return check(s, moves, machine, Observer{});
+Checker::Checker(const std::vector<program::Move>& moves, const Machine& machine, const AxisLayout& layout,
+                 Observer observer)
+    : moves_(moves), machine_(machine), layout_(layout), observer_(std::move(observer)),
+      period_(machine.servo_period_s) {
+  // The axes of the layout with their limits, in the machine's order (the worst axis is the first
+  // with the largest ratio).
+  for (const AxisLimits& ax : machine.axes)
+    if (const int i = layout_.index_of(ax.name); i >= 0) axes_.push_back({&ax, i});
+  for (AxisVector& p : previous_) p = AxisVector::Zero(layout_.size());
+  sm_.position = sm_.velocity = sm_.acceleration = sm_.jerk = AxisVector::Zero(layout_.size());
 }
 
-Report check(const std::vector<Sample>& s, const std::vector<PathMove>& moves, const Machine& machine,
-             const Observer& observer) {
-  Report r;
-  r.samples = static_cast<long>(s.size());
-  const double T = machine.servo_period_s;
-  for (const Sample& p : s) r.finite = r.finite && std::isfinite(p.t_s) && p.position.allFinite();
-  if (!r.finite || s.empty() || moves.empty()) return r;
-  for (std::size_t k = 1; k < s.size(); ++k)
-    if (std::abs((s[k].t_s - s[k - 1].t_s) - T) > 1e-9 * T + 4e-16 * std::abs(s[k].t_s)) r.uniform_time = false;
-  // The linear axes (rotary axes do not carry the path) and the largest ratio of each.
-  struct Axis {
-    const AxisLimits* limits;
-    int index;
-    double max_v = 0.0, max_a = 0.0, max_j = 0.0;
-  };
-  std::vector<Axis> axes;
-  for (const AxisLimits& ax : machine.axes)
-    if (const int i = linear_axis_index(ax.name); i >= 0) axes.push_back({&ax, i});
-  r.blocks.resize(moves.size());
+const std::vector<double>& Checker::spans_of(std::size_t i) {
+  if (breakpoints_.size() <= i) breakpoints_.resize(i + 1);
+  if (breakpoints_[i].empty()) breakpoints_[i] = moves_[i].curve->breakpoints();
+  return breakpoints_[i];
+}
+
+std::size_t Checker::match(const Sample& s, const Vec3& p, double& u, double& d) {
+  const std::size_t k = static_cast<std::size_t>(r_.samples - 1);
+  if (s.move != program::no_move && s.move < moves_.size()) {
+    // The planner's setpoint names its move.
+    const std::size_t m = s.move;
+    const Curve& c = *moves_[m].curve;
+    u = project(c, spans_of(m), p, m == m_prev_ && k > 0 ? u_prev_ : c.u_min());
+    d = (c.point(u) - p).norm();
+    return m;
+  }
+  // The source line selects the move (searching forward: a program may pass the same place
+  // twice); among consecutive moves of the same line (canned cycles), or where lines are not
+  // known, the nearest of the next few wins.
+  std::size_t m = m_;
+  if (moves_[m].source_line != s.source_line) {
+    for (std::size_t n = m + 1; n < moves_.size(); ++n)
+      if (moves_[n].source_line == s.source_line) {
+        m = n;
+        break;
+      }
+  }
+  const Curve* c = moves_[m].curve.get();
+  u = project(*c, spans_of(m), p, m == m_prev_ && k > 0 ? u_prev_ : c->u_min());
+  d = (c->point(u) - p).norm();
+  // A setpoint whose line is no move's (a dwell) stays where the motion stopped; one on a known
+  // line looks among the following moves of the same line only.
+  const bool line_known = s.source_line != 0;
+  const bool on_line = moves_[m].source_line == s.source_line;
+  for (std::size_t n = m + 1; n < moves_.size() && n <= m + 8 && (on_line || !line_known); ++n) {
+    if (on_line && moves_[n].source_line != s.source_line) break;
+    const Curve& cn = *moves_[n].curve;
+    const double un = project(cn, spans_of(n), p, cn.u_min());
+    const double dn = (cn.point(un) - p).norm();
+    if (dn < d || (dn <= d && un > cn.u_min())) {
+      m = n;
+      u = un;
+      d = dn;
+    }
+  }
+  return m;
+}
+
+void Checker::add(const Sample& s) {
+  const std::size_t k = static_cast<std::size_t>(r_.samples++);
+  if (!measuring_) return;
+  const bool finite = std::isfinite(s.t_s) && s.position.allFinite() && s.position.size() == layout_.size();
+  if (!finite) {
+    r_.finite = false;
+    measuring_ = false;
+    return;
+  }
+  const double T = period_;
+  if (k > 0 && std::abs((s.t_s - t_previous_) - T) > 1e-9 * T + 4e-16 * std::abs(s.t_s)) r_.uniform_time = false;
+  t_previous_ = s.t_s;
+  if (moves_.empty()) return;  // nothing to measure against (finish() says so)
+  const Vec3 p = layout_.tool(s.position);
+  if (k == 0) {
+    const Curve& first = *moves_.front().curve;
+    r_.start_error_mm = (p - first.point(first.u_min())).norm();
+  }
+  last_point_ = p;
+  // Finite differences on each axis: velocity, acceleration and jerk ending at k.
+  const AxisVector& p0 = s.position;
+  const AxisVector &p1 = previous_[0], &p2 = previous_[1], &p3 = previous_[2];
+  sm_.velocity.setZero();
+  sm_.acceleration.setZero();
+  sm_.jerk.setZero();
+  if (k >= 1) sm_.velocity = (p0 - p1) / T;
+  if (k >= 2) sm_.acceleration = (p0 - 2 * p1 + p2) / (T * T);
+  if (k >= 3) sm_.jerk = (p0 - 3 * p1 + 3 * p2 - p3) / (T * T * T);
+  sm_.velocity_ratio = sm_.acceleration_ratio = sm_.jerk_ratio = 0.0;
+  for (Axis& ax : axes_) {
+    const int i = ax.index;
+    if (k >= 1) {
+      const double v = std::abs(p0[i] - p1[i]) / T / ax.limits->max_velocity;
+      ax.max_v = std::max(ax.max_v, v);
+      sm_.velocity_ratio = std::max(sm_.velocity_ratio, v);
+    }
+    if (k >= 2) {
+      const double a = std::abs(p0[i] - 2 * p1[i] + p2[i]) / (T * T) / ax.limits->max_acceleration;
+      ax.max_a = std::max(ax.max_a, a);
+      sm_.acceleration_ratio = std::max(sm_.acceleration_ratio, a);
+    }
+    if (k >= 3) {
+      const double j = std::abs(p0[i] - 3 * p1[i] + 3 * p2[i] - p3[i]) / (T * T * T) / ax.limits->max_jerk;
+      ax.max_j = std::max(ax.max_j, j);
+      sm_.jerk_ratio = std::max(sm_.jerk_ratio, j);
+    }
+  }
+  double u = 0.0, d = 0.0;
+  const std::size_t m = match(s, p, u, d);
+  const Curve& c = *moves_[m].curve;
+  r_.max_path_error_mm = std::max(r_.max_path_error_mm, d);
+  double chord = 0.0;
+  if (k > 0 && m == m_prev_ && u > u_prev_) {
+    // The bow of the path between the two setpoints from their chord.
+    const Vec3 a = previous_point_[0], b = p, ab = b - a;
+    const double len2 = ab.squaredNorm();
+    for (int q = 1; q < 8; ++q) {
+      const Vec3 pq = c.point(u_prev_ + (u - u_prev_) * q / 8.0) - a;
+      const double t = len2 > 0.0 ? std::clamp(pq.dot(ab) / len2, 0.0, 1.0) : 0.0;
+      chord = std::max(chord, (pq - t * ab).norm());
+    }
+    r_.max_chord_error_mm = std::max(r_.max_chord_error_mm, chord);
+  }
+  if (r_.blocks.size() <= m) r_.blocks.resize(m + 1);
+  BlockStats& b = r_.blocks[m];
+  if (b.samples++ == 0) {
+    b.first_sample = static_cast<long>(k);
+    b.t_first_s = s.t_s;
+    b.first_point = p;
+  }
+  b.last_sample = static_cast<long>(k);
+  b.t_last_s = s.t_s;
+  b.max_path_error_mm = std::max(b.max_path_error_mm, d);
+  b.max_chord_error_mm = std::max(b.max_chord_error_mm, chord);
+  b.max_velocity_ratio = std::max(b.max_velocity_ratio, sm_.velocity_ratio);
+  b.max_acceleration_ratio = std::max(b.max_acceleration_ratio, sm_.acceleration_ratio);
+  b.max_jerk_ratio = std::max(b.max_jerk_ratio, sm_.jerk_ratio);
+  if (observer_) {
+    sm_.index = k;
+    sm_.t_s = s.t_s;
+    sm_.position = p0;
+    sm_.path_error_mm = d;
+    sm_.chord_error_mm = chord;
+    sm_.move = m;
+    observer_(sm_);
+  }
+  previous_[2] = previous_[1];
+  previous_[1] = previous_[0];
+  previous_[0] = p0;
+  previous_point_[0] = p;
+  u_prev_ = u;
+  m_prev_ = m;
+  m_ = m;
+}
+
+Report Checker::finish() {
+  Report r = std::move(r_);
+  r_ = Report{};
+  if (!r.finite || r.samples == 0 || moves_.empty()) {
+    Report bare;
+    bare.samples = r.samples;
+    bare.finite = r.finite;
+    return bare;
+  }
+  r.blocks.resize(moves_.size());
+  for (std::size_t i = 0; i < moves_.size(); ++i) r.blocks[i].source_line = moves_[i].source_line;
+  const Curve& last = *moves_.back().curve;
+  r.end_error_mm = (last_point_ - last.point(last.u_max())).norm();
   // Corner blends: each within the tolerance of the programmed lines it replaces.
-  for (const PathMove& pm : moves) {
-    if (pm.corner == nullptr) continue;
+  for (const program::Move& pm : moves_) {
+    if (!pm.corner) continue;
     ++r.blends;
-    const double dev = corner_deviation(*pm.curve, *pm.corner);
+    const double dev = blend_deviation(*pm.curve, *pm.corner);
     const double ratio = pm.corner->tolerance_mm > 0.0 ? dev / pm.corner->tolerance_mm
                                                        : (dev > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
     r.max_blend_deviation_mm = std::max(r.max_blend_deviation_mm, dev);
@@ -171,123 +325,8 @@ Report check(const std::vector<Sample>& s, const std::vector<PathMove>& moves, c
       r.blend_tolerance_mm = pm.corner->tolerance_mm;
     }
   }
-  for (std::size_t i = 0; i < moves.size(); ++i) r.blocks[i].source_line = moves[i].source_line;
-  // Path: the start and end, each setpoint's distance from its move, each chord's bow.
-  const Curve& first = *moves.front().curve;
-  const Curve& last = *moves.back().curve;
-  r.start_error_mm = (s.front().position - first.point(first.u_min())).norm();
-  r.end_error_mm = (s.back().position - last.point(last.u_max())).norm();
-  // Each setpoint lies on the current move or a later one (setpoints never go back); the next
-  // move takes over once it is at least as close (a setpoint may skip a move shorter than a cycle).
-  // Breakpoints of each move, computed once (the projection samples every span).
-  std::vector<std::vector<double>> breakpoints(moves.size());
-  auto spans_of = [&](std::size_t i) -> const std::vector<double>& {
-    if (breakpoints[i].empty()) breakpoints[i] = moves[i].curve->breakpoints();
-    return breakpoints[i];
-  };
-  std::size_t m = 0;
-  double u_prev = moves[0].curve->u_min();
-  std::size_t m_prev = 0;
-  SampleMeasure sm;
-  for (std::size_t k = 0; k < s.size(); ++k) {
-    // Finite differences on each axis: velocity, acceleration and jerk ending at k.
-    const Vec3& p0 = s[k].position;
-    sm.velocity.setZero();
-    sm.acceleration.setZero();
-    sm.jerk.setZero();
-    if (k >= 1) sm.velocity = (p0 - s[k - 1].position) / T;
-    if (k >= 2) sm.acceleration = (p0 - 2 * s[k - 1].position + s[k - 2].position) / (T * T);
-    if (k >= 3) sm.jerk = (p0 - 3 * s[k - 1].position + 3 * s[k - 2].position - s[k - 3].position) / (T * T * T);
-    sm.velocity_ratio = sm.acceleration_ratio = sm.jerk_ratio = 0.0;
-    for (Axis& ax : axes) {
-      const int i = ax.index;
-      if (k >= 1) {
-        const double v = std::abs(s[k].position[i] - s[k - 1].position[i]) / T / ax.limits->max_velocity;
-        ax.max_v = std::max(ax.max_v, v);
-        sm.velocity_ratio = std::max(sm.velocity_ratio, v);
-      }
-      if (k >= 2) {
-        const double a = std::abs(s[k].position[i] - 2 * s[k - 1].position[i] + s[k - 2].position[i]) / (T * T) /
-                         ax.limits->max_acceleration;
-        ax.max_a = std::max(ax.max_a, a);
-        sm.acceleration_ratio = std::max(sm.acceleration_ratio, a);
-      }
-      if (k >= 3) {
-        const double j = std::abs(s[k].position[i] - 3 * s[k - 1].position[i] + 3 * s[k - 2].position[i] -
-                                  s[k - 3].position[i]) /
-                         (T * T * T) / ax.limits->max_jerk;
-        ax.max_j = std::max(ax.max_j, j);
-        sm.jerk_ratio = std::max(sm.jerk_ratio, j);
-      }
-    }
-    // The source line selects the move (searching forward: a program may pass the same place
-    // twice); among consecutive moves of the same line (canned cycles), or where lines are not
-    // known, the nearest of the next few wins.
-    if (moves[m].source_line != s[k].source_line) {
-      for (std::size_t n = m + 1; n < moves.size(); ++n)
-        if (moves[n].source_line == s[k].source_line) {
-          m = n;
-          break;
-        }
-    }
-    const Curve* c = moves[m].curve;
-    double u = project(*c, spans_of(m), s[k].position, m == m_prev && k > 0 ? u_prev : c->u_min());
-    double d = (c->point(u) - s[k].position).norm();
-    // A setpoint whose line is no move's (a dwell) stays where the motion stopped; one on a known
-    // line looks among the following moves of the same line only.
-    const bool line_known = s[k].source_line != 0;
-    const bool on_line = moves[m].source_line == s[k].source_line;
-    for (std::size_t n = m + 1; n < moves.size() && n <= m + 8 && (on_line || !line_known); ++n) {
-      if (on_line && moves[n].source_line != s[k].source_line) break;
-      const Curve& cn = *moves[n].curve;
-      const double un = project(cn, spans_of(n), s[k].position, cn.u_min());
-      const double dn = (cn.point(un) - s[k].position).norm();
-      if (dn < d || (dn <= d && un > cn.u_min())) {
-        m = n;
-        c = &cn;
-        u = un;
-        d = dn;
-      }
-    }
-    r.max_path_error_mm = std::max(r.max_path_error_mm, d);
-    double chord = 0.0;
-    if (k > 0 && m == m_prev && u > u_prev) {
-      // The bow of the path between the two setpoints from their chord.
-      const Vec3 a = s[k - 1].position, b = s[k].position, ab = b - a;
-      const double len2 = ab.squaredNorm();
-      for (int q = 1; q < 8; ++q) {
-        const Vec3 p = c->point(u_prev + (u - u_prev) * q / 8.0) - a;
-        const double t = len2 > 0.0 ? std::clamp(p.dot(ab) / len2, 0.0, 1.0) : 0.0;
-        chord = std::max(chord, (p - t * ab).norm());
-      }
-      r.max_chord_error_mm = std::max(r.max_chord_error_mm, chord);
-    }
-    BlockStats& b = r.blocks[m];
-    if (b.samples++ == 0) {
-      b.first_sample = static_cast<long>(k);
-      b.t_first_s = s[k].t_s;
-    }
-    b.last_sample = static_cast<long>(k);
-    b.t_last_s = s[k].t_s;
-    b.max_path_error_mm = std::max(b.max_path_error_mm, d);
-    b.max_chord_error_mm = std::max(b.max_chord_error_mm, chord);
-    b.max_velocity_ratio = std::max(b.max_velocity_ratio, sm.velocity_ratio);
-    b.max_acceleration_ratio = std::max(b.max_acceleration_ratio, sm.acceleration_ratio);
-    b.max_jerk_ratio = std::max(b.max_jerk_ratio, sm.jerk_ratio);
-    if (observer) {
-      sm.index = k;
-      sm.t_s = s[k].t_s;
-      sm.position = p0;
-      sm.path_error_mm = d;
-      sm.chord_error_mm = chord;
-      sm.move = m;
-      observer(sm);
-    }
-    u_prev = u;
-    m_prev = m;
-  }
   // The worst axis: the first in the machine's order with the largest ratio.
-  for (const Axis& ax : axes) {
+  for (const Axis& ax : axes_) {
     if (ax.max_v > r.max_velocity_ratio) {
       r.max_velocity_ratio = ax.max_v;
       r.worst_velocity_axis = ax.limits->name;
@@ -302,6 +341,13 @@ Report check(const std::vector<Sample>& s, const std::vector<PathMove>& moves, c
     }
   }
   return r;
+}
+
+Report check(const std::vector<Sample>& samples, const std::vector<program::Move>& moves, const Machine& machine,
+             const Observer& observer) {
+  Checker c(moves, machine, AxisLayout::xyz(), observer);
+  for (const Sample& s : samples) c.add(s);
+  return c.finish();
 }
 
 }  // namespace kontur::verify

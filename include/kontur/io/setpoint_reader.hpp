@@ -2,8 +2,9 @@
 // Reads setpoint files back (the CSV and binary formats of setpoint_writer.hpp, docs/setpoints.md),
 // for `kontur verify`: the checker then proves them against a program and a machine, whoever
 // wrote them.
-#include <kontur/verify/checker.hpp>
+#include <kontur/trajectory/sampler.hpp>
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,8 +14,20 @@ namespace kontur {
 /// The contents of a setpoint file.
 struct SetpointFile {
   std::optional<double> period_s;        ///< servo period [s] (binary files carry it; CSV does not)
-  std::vector<verify::Sample> samples;   ///< time [s], position [mm] and source line per setpoint
+  std::vector<trajectory::Setpoint> samples;  ///< time [s], position [mm], speed [mm/s] and source line per setpoint
 };
+
+/// Receives each setpoint of a file in order (positions X Y Z; no move id).
+using SetpointVisitor = std::function<void(const trajectory::Setpoint&)>;
+
+/// Reads a setpoint file setpoint by setpoint, holding none (the same formats and errors as
+/// read_setpoints; an error may come after earlier setpoints were visited). Returns the servo
+/// period [s] a binary file carries (none for CSV).
+std::optional<double> for_each_setpoint(const std::string& path, const SetpointVisitor& visit);
+
+/// The servo period [s] in a binary file's header (none for CSV or a header cut short); reads the
+/// header only. Throws InputError ("file-missing") when the file cannot be opened.
+[[nodiscard]] std::optional<double> setpoint_file_period(const std::string& path);
 
 /// Reads a CSV (header `t,x,y,z,v,block`) or binary (`KONTURSP`) setpoint file; the format is
 /// recognised by its first bytes. Throws InputError naming the file, the line (CSV) or record

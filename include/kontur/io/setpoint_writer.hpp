@@ -2,7 +2,7 @@
 // Sinks for setpoints: CSV with a header line (columns t [s], x y z [mm], v [mm/s], block = source
 // line), and a compact little-endian binary format for long runs (docs/setpoints.md). Both stream:
 // one setpoint at a time, nothing held. Output is reproducible byte for byte.
-#include <kontur/plan/motion_planner.hpp>
+#include <kontur/trajectory/sampler.hpp>
 
 #include <cstdint>
 #include <ostream>
@@ -18,13 +18,13 @@ inline constexpr std::uint32_t setpoint_binary_version = 1;
 /// Output format of setpoints.
 enum class SetpointFormat { csv, binary };
 
-/// Writes setpoints to a stream in one of the formats. write() never allocates.
+/// Writes setpoints (positions in the X Y Z layout) to a stream in one of the formats. write() never allocates.
 class SetpointWriter {
 public:
   SetpointWriter(std::ostream& out, SetpointFormat format, double period_s);
   /// Writes one setpoint; in CSV, positions [mm] in the shortest form that reads back exactly, t [s]
   /// with 9 decimals, v [mm/s] with 6.
-  void write(const plan::Setpoint& s);
+  void write(const trajectory::Setpoint& s);
   /// Setpoints written.
   [[nodiscard]] long count() const noexcept { return count_; }
 

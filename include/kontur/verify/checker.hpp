@@ -1,10 +1,17 @@
 #pragma once
 // An independent check of setpoints against the machine and the programmed path, computed from
 // the setpoints alone (finite differences) and the path's geometry: nothing of the planner is
-// trusted. The core of `kontur verify` and of the tests that prove the planner.
+// trusted. It depends on the moves (program/move.hpp), the machine and the setpoints' type, never
+// on the planner. It streams: setpoints are added one at a time, and it keeps only the last few
+// (memory does not grow with the job). The core of `kontur verify`, of the pipeline's summary and
+// of the tests that prove the planner.
+#include <kontur/axes.hpp>
 #include <kontur/geometry/curve.hpp>
 #include <kontur/machine.hpp>
+#include <kontur/program/move.hpp>
+#include <kontur/trajectory/sampler.hpp>
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -12,31 +19,10 @@
 
 namespace kontur::verify {
 
-/// The programmed corner a blend replaces: the lines before -> corner -> after of the program.
-struct ProgrammedCorner {
-  Vec3 before = Vec3::Zero();  ///< start of the incoming line [mm]
-  Vec3 corner = Vec3::Zero();  ///< the corner point [mm]
-  Vec3 after = Vec3::Zero();   ///< end of the outgoing line [mm]
-  double tolerance_mm = 0.0;   ///< the G64 tolerance the blend must keep [mm]
-};
+/// A setpoint to check: time [s], axis positions, source line and (if known) its move.
+using Sample = trajectory::Setpoint;
 
-/// One move of the path as the checker sees it.
-struct PathMove {
-  const Curve* curve = nullptr;  ///< the path run (a programmed move, a trimmed line or a corner blend)
-  long source_line = 0;          ///< the line setpoints on it carry
-  /// A corner blend: the programmed corner it replaces (its largest distance from the two lines is
-  /// checked against the tolerance); nullptr for any other move.
-  const ProgrammedCorner* corner = nullptr;
-};
-
-/// A setpoint to check (as written by the planner: time, position, source line).
-struct Sample {
-  double t_s = 0.0;
-  Vec3 position = Vec3::Zero();
-  long source_line = 0;
-};
-
-/// The measures of one programmed move (block): over the setpoints the checker matched to it.
+/// The measures of one move: over the setpoints the checker matched to it.
 struct BlockStats {
   long source_line = 0;
   long samples = 0;                    ///< setpoints on this move (0: shorter than a period, skipped)
@@ -44,6 +30,7 @@ struct BlockStats {
   long last_sample = -1;               ///< index of its last setpoint (-1 if none)
   double t_first_s = 0.0;              ///< time of its first setpoint [s] (0 if none)
   double t_last_s = 0.0;               ///< time of its last setpoint [s] (0 if none)
+  Vec3 first_point = Vec3::Zero();     ///< tool point of its first setpoint [mm]
   double max_path_error_mm = 0.0;      ///< largest distance of its setpoints from its path [mm]
   double max_chord_error_mm = 0.0;     ///< largest bow of its chords (both ends on it) [mm]
   double max_velocity_ratio = 0.0;     ///< over its setpoints k: max over axes of the difference ending at k / limit
@@ -55,18 +42,18 @@ struct BlockStats {
 struct SampleMeasure {
   std::size_t index = 0;     ///< index of the setpoint
   double t_s = 0.0;          ///< its time [s]
-  Vec3 position = Vec3::Zero();  ///< [mm]
+  AxisVector position = AxisVector::Zero(3);  ///< its axis positions [mm] / [deg], in the layout's order
   /// Backward differences per axis, as the limits are checked: (p_k - p_{k-1}) / T [mm/s], then
   /// the second [mm/s^2] and third [mm/s^3] differences over T^2 and T^3; zero where there are
   /// not enough earlier setpoints (k < 1, 2, 3).
-  Vec3 velocity = Vec3::Zero(), acceleration = Vec3::Zero(), jerk = Vec3::Zero();
+  AxisVector velocity = AxisVector::Zero(3), acceleration = AxisVector::Zero(3), jerk = AxisVector::Zero(3);
   double velocity_ratio = 0.0, acceleration_ratio = 0.0, jerk_ratio = 0.0;  ///< max over axes / limit
   double path_error_mm = 0.0;   ///< distance from its move's path [mm]
   double chord_error_mm = 0.0;  ///< bow of the path from the chord ending here [mm] (0 at a move change)
   std::size_t move = 0;         ///< index into `moves` of the move it was matched to
 };
 
-/// Called once per setpoint, in order, by check() (only when every setpoint is finite).
+/// Called once per setpoint, in order (only while every setpoint so far is finite).
 using Observer = std::function<void(const SampleMeasure&)>;
 
 /// Measured maxima and what they are measured against.
@@ -96,18 +83,58 @@ struct Report {
   [[nodiscard]] std::vector<std::string> failures(const Machine& machine) const;
 };
 
-/// Largest distance [mm] of `curve` from the union of the segments [before, corner] and
-/// [corner, after], sampled densely (tolerances::blend_deviation_samples per curve and a
-/// golden-section search around the largest sample).
-[[nodiscard]] double corner_deviation(const Curve& curve, const ProgrammedCorner& corner);
+/// Largest distance [mm] of a blend `curve` from the union of its programmed corner's segments
+/// [before, corner] and [corner, after], measured by the checker's own method (independent of the
+/// blender's sizing): tolerances::check_blend_samples samples, then successive parabolic
+/// interpolation around every local maximum of the samples.
+[[nodiscard]] double blend_deviation(const Curve& curve, const program::ProgrammedCorner& corner);
 
-/// Checks `samples` (in time order) against `machine` and the path `moves` (in order): each
-/// sample is matched to the next move with its source line (samples never go back), and among
-/// moves of one line (or where lines do not match) to the nearest of the next few.
-[[nodiscard]] Report check(const std::vector<Sample>& samples, const std::vector<PathMove>& moves,
-                           const Machine& machine);
-/// The same, and `observer` (if set) receives every setpoint's measures, in order (for plots).
-[[nodiscard]] Report check(const std::vector<Sample>& samples, const std::vector<PathMove>& moves,
-                           const Machine& machine, const Observer& observer);
+/// The streaming check.
+class Checker {
+public:
+  /// Checks against the path `moves` (kept by reference: it may grow while setpoints are added, as
+  /// long as every setpoint's move is already in it; all of it must be there for setpoints without
+  /// a move id), `machine` and the positions' `layout`. `observer` (if set) receives every
+  /// setpoint's measures, in order (for plots).
+  Checker(const std::vector<program::Move>& moves, const Machine& machine,
+          const AxisLayout& layout = AxisLayout::xyz(), Observer observer = {});
+  /// The next setpoint, in time order. A setpoint with a move id is matched to that move; one
+  /// without (read from a file) to the next move with its source line (setpoints never go back),
+  /// and among moves of one line (or where lines do not match) to the nearest of the next few.
+  void add(const Sample& s);
+  /// The report, after the last setpoint (the end error, the blends, the worst axes).
+  [[nodiscard]] Report finish();
+
+private:
+  struct Axis {
+    const AxisLimits* limits;
+    int index;  // in the layout
+    double max_v = 0.0, max_a = 0.0, max_j = 0.0;
+  };
+  [[nodiscard]] const std::vector<double>& spans_of(std::size_t move);
+  [[nodiscard]] std::size_t match(const Sample& s, const Vec3& p, double& u, double& d);
+
+  const std::vector<program::Move>& moves_;
+  const Machine& machine_;
+  AxisLayout layout_;
+  Observer observer_;
+  double period_;
+  std::vector<Axis> axes_;
+  Report r_;
+  bool measuring_ = true;          // false once a setpoint is not finite
+  std::array<AxisVector, 3> previous_{};  // positions of setpoints k-1, k-2, k-3
+  std::array<Vec3, 1> previous_point_{};  // tool point of setpoint k-1 [mm]
+  double t_previous_ = 0.0;
+  Vec3 last_point_ = Vec3::Zero();
+  std::vector<std::vector<double>> breakpoints_;  // per move, computed once (the projection samples every span)
+  std::size_t m_ = 0, m_prev_ = 0;
+  double u_prev_ = 0.0;
+  SampleMeasure sm_;
+};
+
+/// Checks `samples` (in time order) against `machine` and the path `moves`: a Checker fed every
+/// sample.
+[[nodiscard]] Report check(const std::vector<Sample>& samples, const std::vector<program::Move>& moves,
+                           const Machine& machine, const Observer& observer = {});
 
 }  // namespace kontur::verify

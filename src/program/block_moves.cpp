@@ -1,6 +1,7 @@
 #include <kontur/error.hpp>
-#include <kontur/plan/program_moves.hpp>
+#include <kontur/geometry/length.hpp>
 #include <kontur/geometry/span_polynomial.hpp>
+#include <kontur/program/block_moves.hpp>
 
 #include <fmt/format.h>
 
@@ -8,7 +9,7 @@
 #include <type_traits>
 #include <variant>
 
-namespace kontur::plan {
+namespace kontur::program {
 namespace {
 
 // The block's curve as a shared curve for the planner (NURBS as span polynomials: faster).
@@ -29,11 +30,17 @@ std::shared_ptr<const Curve> shared_curve(const gcode::Block& b) {
 
 }  // namespace
 
-MoveInput move_input(const gcode::Block& b, const Machine& machine) {
-  MoveInput m;
+double corner_tolerance(const gcode::Block& b, const Machine& machine) {
+  if (b.modal.path_control != gcode::PathControl::blend) return 0.0;
+  return b.modal.blend_tolerance_mm > 0.0 ? b.modal.blend_tolerance_mm : machine.path_tolerance_mm;
+}
+
+Move move_of(const gcode::Block& b, const Machine& machine) {
+  Move m;
   m.curve = shared_curve(b);
   m.source_line = b.location.line;
-  if (!m.curve) return m;  // dwell
+  m.type = gcode::to_string(b.type);
+  if (!m.curve) return m;  // no motion (a dwell)
   double feed = b.type == gcode::BlockType::rapid ? machine.rapid_feed_mm_s : b.feed.value / 60.0;  // [mm/s]
   if (b.feed.mode == gcode::FeedMode::inverse_time && b.type != gcode::BlockType::rapid) {
     const auto len = b.length_mm();
@@ -45,7 +52,10 @@ MoveInput move_input(const gcode::Block& b, const Machine& machine) {
                                                  b.location.line));
   m.feed_mm_s = feed;
   m.exact_stop = b.modal.path_control != gcode::PathControl::blend;
+  m.corner_tolerance_mm = corner_tolerance(b, machine);
+  const auto len = b.length_mm();
+  m.length_mm = len ? *len : length(*m.curve);
   return m;
 }
 
-}  // namespace kontur::plan
+}  // namespace kontur::program

@@ -1,20 +1,18 @@
-#include "check_summary.hpp"
+#include <kontur/report/summary.hpp>
 
-#include <kontur/io/atomic_file.hpp>
+#include <nlohmann/json.hpp>
 
-#include <iostream>
+namespace kontur::report {
 
-namespace kontur::app {
-
-nlohmann::ordered_json check_summary(const std::string& program, const Machine& machine, const verify::Report& r,
-                                     const std::vector<RunMove>& run_moves, double total_time_s) {
+std::string summary_json(const std::string& program, const Machine& machine, const verify::Report& r,
+                         const std::vector<program::Move>& moves, double total_time_s, const SummaryExtras& extras) {
   nlohmann::ordered_json j;
   j["program"] = program;
   j["machine"] = machine.source;
   j["servo_period_s"] = machine.servo_period_s;
   j["setpoints"] = r.samples;
   j["total_time_s"] = total_time_s;
-  j["moves"] = run_moves.size();
+  j["moves"] = moves.size();
   j["max_velocity_ratio"] = r.max_velocity_ratio;
   j["max_acceleration_ratio"] = r.max_acceleration_ratio;
   j["max_jerk_ratio"] = r.max_jerk_ratio;
@@ -27,15 +25,15 @@ nlohmann::ordered_json check_summary(const std::string& program, const Machine& 
   j["blend_tolerance_mm"] = r.blend_tolerance_mm;
   j["passed"] = r.passed(machine);
   j["failures"] = r.failures(machine);
-  // Per block (docs/setpoints.md): the setpoints the checker matched to it and their maxima.
+  // Per move (docs/setpoints.md): the setpoints the checker matched to it and their maxima.
   auto blocks = nlohmann::ordered_json::array();
-  for (std::size_t i = 0; i < r.blocks.size(); ++i) {
+  for (std::size_t i = 0; i < r.blocks.size() && i < moves.size(); ++i) {
     const verify::BlockStats& b = r.blocks[i];
     nlohmann::ordered_json e;
     e["line"] = b.source_line;
-    e["type"] = run_moves[i].type;
-    e["length_mm"] = run_moves[i].length_mm;
-    e["feed_mm_s"] = run_moves[i].feed_mm_s;
+    e["type"] = moves[i].type;
+    e["length_mm"] = moves[i].length_mm;
+    e["feed_mm_s"] = moves[i].feed_mm_s;
     e["setpoints"] = b.samples;
     if (b.samples > 0) {
       e["t_start_s"] = b.t_first_s;
@@ -52,19 +50,13 @@ nlohmann::ordered_json check_summary(const std::string& program, const Machine& 
     blocks.push_back(std::move(e));
   }
   j["blocks"] = std::move(blocks);
-  return j;
-}
-
-void write_summary(const nlohmann::ordered_json& summary, const std::string& path, bool quiet,
-                   const std::vector<std::filesystem::path>& inputs) {
-  const std::string text = summary.dump(2) + "\n";
-  if (path.empty()) {
-    if (!quiet) std::cerr << text;
-  } else if (path == "-") {
-    std::cout << text;
-  } else {
-    write_file_atomically(path, [&](std::ostream& out) { out << text; }, inputs);
+  if (extras.time_optimal_s) {
+    j["time_optimal_s"] = *extras.time_optimal_s;
+    // No motion: both times are 0, the ratio 1 (never NaN in the output).
+    j["time_ratio"] = *extras.time_optimal_s > 0.0 ? total_time_s / *extras.time_optimal_s : 1.0;
   }
+  if (extras.setpoint_file) j["setpoint_file"] = *extras.setpoint_file;
+  return j.dump(2) + "\n";
 }
 
-}  // namespace kontur::app
+}  // namespace kontur::report

@@ -1,0 +1,79 @@
+#pragma once
+// Kontur's main job as one library call: a part program and a machine in; setpoints out to a sink
+// as they are made; the independent check (and a report's observer) fed as they stream; the JSON
+// summary built at the end. The stages, in the one direction the data flows:
+//   gcode::Reader -> program::ProgramPath (moves, corner blends, dwells, move ids)
+//   -> plan::MotionPlanner (look-ahead, S-curves) -> trajectory::Trajectory (time segments)
+//   -> trajectory::Sampler (setpoints at the servo period) -> sinks and verify::Checker.
+// `kontur run` and `kontur verify`, the shared-program tests and the benchmarks all call this;
+// nothing retypes it.
+#include <kontur/axes.hpp>
+#include <kontur/machine.hpp>
+#include <kontur/program/move.hpp>
+#include <kontur/program/program_path.hpp>
+#include <kontur/trajectory/sampler.hpp>
+#include <kontur/verify/checker.hpp>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace kontur {
+
+/// How a program is run.
+struct PipelineOptions {
+  bool blend = true;          ///< blend corners within the G64 tolerance (false: `--no-blend`)
+  bool check = true;          ///< check the setpoints independently as they stream (false: planning only)
+  bool time_optimal = false;  ///< add the time-optimal reference (acceleration-limited) to the summary
+};
+
+/// What a run hands out while it goes. Every handler may be empty.
+struct PipelineEvents {
+  std::function<void(const trajectory::Setpoint&)> setpoint;  ///< each setpoint, in order
+  verify::Observer observer;                                   ///< the checker's measures of each setpoint
+  std::function<void(long line)> progress;                     ///< after each block: its source line
+};
+
+/// The outcome of a run or of a check of a setpoint file.
+struct RunResult {
+  verify::Report check;       ///< the independent check (empty when options.check is false)
+  long setpoints = 0;         ///< setpoints made (or read)
+  double total_time_s = 0.0;  ///< time of the last setpoint [s]
+  std::string summary_json;   ///< the JSON summary (report/summary.hpp; empty when options.check is false)
+  /// True when the check found every limit held.
+  bool passed = false;
+};
+
+class Pipeline {
+public:
+  /// Runs on `machine` (copied; validated by its reader) with `options`.
+  explicit Pipeline(Machine machine, PipelineOptions options = {});
+  Pipeline(const Pipeline&) = delete;
+  Pipeline& operator=(const Pipeline&) = delete;
+
+  /// Reads, plans and samples `program` (a file path; a program with an error yields no setpoint:
+  /// InputError is thrown before the first one), handing every setpoint to events.setpoint.
+  RunResult run(const std::string& program, const PipelineEvents& events = {});
+
+  /// Checks the setpoint file `setpoints` (CSV or binary, io/setpoint_reader.hpp) against
+  /// `program` on the machine, streaming. Throws InputError for a program without motion, a file
+  /// without setpoints, or a binary file written at another servo period.
+  RunResult verify(const std::string& program, const std::string& setpoints, const PipelineEvents& events = {});
+
+  /// The moves of the path of the current or last run or verify, in order (moves()[id].id == id);
+  /// the same vector for the pipeline's life (it grows while a run streams).
+  [[nodiscard]] const std::vector<program::Move>& moves() const noexcept { return path_.moves(); }
+  /// The machine.
+  [[nodiscard]] const Machine& machine() const noexcept { return machine_; }
+  /// The setpoints' axis layout.
+  [[nodiscard]] const AxisLayout& layout() const noexcept { return layout_; }
+
+private:
+  Machine machine_;
+  PipelineOptions options_;
+  AxisLayout layout_ = AxisLayout::xyz();
+  program::ProgramPath path_;
+};
+
+}  // namespace kontur

@@ -1,0 +1,48 @@
+#pragma once
+// The path a part program runs: each block becomes a move (move_of), corners between lines are
+// blended within the G64 tolerance (CornerBlender), dwells stop the motion, and every move gets
+// its id (its index in the path). One place, so that the pipeline, `kontur verify` and the tests
+// see the same path.
+#include <kontur/gcode/block.hpp>
+#include <kontur/machine.hpp>
+#include <kontur/program/corner_blender.hpp>
+#include <kontur/program/move.hpp>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace kontur::program {
+
+/// What reading a program hands on, in program order. Any handler may be empty.
+struct PathHandlers {
+  std::function<void(const Move&)> move;            ///< a move of the path (its id set)
+  std::function<void(const Dwell&)> dwell;          ///< a dwell, after the moves before it
+  std::function<void(const gcode::Block&)> block;   ///< after each block's moves (progress)
+};
+
+class ProgramPath {
+public:
+  /// `blend` false: corners are junctions (`--no-blend`).
+  ProgramPath(const Machine& machine, bool blend);
+  ProgramPath(const ProgramPath&) = delete;
+  ProgramPath& operator=(const ProgramPath&) = delete;
+
+  /// Reads `program` (gcode::for_each_block: a program with an error yields nothing) and hands on
+  /// its moves and dwells; the moves are kept (moves(), the same vector from one read to the next:
+  /// each read starts it anew).
+  void read(const std::string& program, const PathHandlers& handlers);
+
+  /// Every move of the path, in order: moves()[id].id == id.
+  [[nodiscard]] const std::vector<Move>& moves() const noexcept { return moves_; }
+
+private:
+  void take(std::vector<Move>& ready, const PathHandlers& handlers);
+
+  const Machine& machine_;
+  bool blend_;
+  CornerBlender blender_;
+  std::vector<Move> moves_;
+};
+
+}  // namespace kontur::program

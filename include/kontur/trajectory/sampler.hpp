@@ -1,0 +1,52 @@
+#pragma once
+// Setpoints at the servo period from the trajectory's segments: each cycle advances the time,
+// samples the current segment's profile for the distance along its piece and maps it to a point by
+// the exact arc length (ArcLengthTable::u_after). The per-cycle path: noexcept, allocation-free,
+// bounded, and it never frees (it only marks the segments it has passed; the planner frees them).
+#include <kontur/axes.hpp>
+#include <kontur/program/move.hpp>
+#include <kontur/trajectory/trajectory.hpp>
+
+#include <cstddef>
+
+namespace kontur::trajectory {
+
+/// One setpoint of the servo loop.
+struct Setpoint {
+  double t_s = 0.0;                         ///< time since the start [s]
+  AxisVector position = AxisVector::Zero(3);  ///< axis positions in the layout's order [mm] / [deg]
+  double v_mm_s = 0.0;                      ///< planned path speed [mm/s]
+  long source_line = 0;                     ///< line of the move it lies on (of the dwell, while dwelling)
+  program::MoveId move = program::no_move;  ///< the move it lies on (no_move: unknown, e.g. read from a file)
+};
+
+class Sampler {
+public:
+  /// Samples `trajectory` (kept by reference) every `period_s` [s]; positions in `layout`.
+  Sampler(Trajectory& trajectory, double period_s, const AxisLayout& layout = AxisLayout::xyz()) noexcept
+      : trajectory_(&trajectory), period_(period_s), layout_(layout) {}
+  /// The next setpoint: false when the trajectory has no segment for it yet (the planner must
+  /// append more), or when done(). The first setpoint is the start point at t = 0.
+  bool next(Setpoint& out) noexcept;
+  /// True once the last setpoint (the end of the last segment, at rest) was given.
+  [[nodiscard]] bool done() const noexcept { return end_given_; }
+  /// Servo period [s].
+  [[nodiscard]] double period_s() const noexcept { return period_; }
+  /// The layout of the setpoints' positions.
+  [[nodiscard]] const AxisLayout& layout() const noexcept { return layout_; }
+
+private:
+  void emit(Setpoint& out, double t, const Vec3& p, double v, long line, program::MoveId move) const noexcept;
+
+  Trajectory* trajectory_;
+  double period_;
+  AxisLayout layout_;
+  std::size_t current_ = 0;  // index of the current segment
+  bool started_ = false;
+  bool end_given_ = false;
+  double t_ = 0.0;            // time of the last setpoint [s]
+  double t_move_ = 0.0;       // time into the current segment [s]
+  double u_ = 0.0, s_ = 0.0;  // parameter and distance on the curve of the last setpoint
+};
+
+}  // namespace kontur::trajectory

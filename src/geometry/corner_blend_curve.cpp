@@ -1,0 +1,78 @@
+#include <kontur/geometry/corner_blend_curve.hpp>
+#include <kontur/tolerances.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace kontur {
+namespace {
+
+// Distance from p to the segment [a, b] [mm].
+double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) noexcept {
+  const Vec3 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (p - a - t * ab).norm();
+}
+
+}  // namespace
+
+Derivatives CornerBlendCurve::derivatives(double u, int order) const noexcept {
+  u = std::clamp(u, 0.0, 1.0);
+  const double u2 = u * u, u3 = u2 * u, u4 = u3 * u, u5 = u4 * u;
+  const double s = d_ / 3.0;
+  // 3 alpha and 3 beta and their derivatives (integer coefficients: the ends are exact).
+  const double a[4] = {-3.0 + 5.0 * u - 5.0 * u4 + 3.0 * u5, 5.0 - 20.0 * u3 + 15.0 * u4, -60.0 * u2 + 60.0 * u3,
+                       -120.0 * u + 180.0 * u2};
+  const double b[4] = {10.0 * u3 - 10.0 * u4 + 3.0 * u5, 30.0 * u2 - 40.0 * u3 + 15.0 * u4,
+                       60.0 * u - 120.0 * u2 + 60.0 * u3, 60.0 - 240.0 * u + 180.0 * u2};
+  Derivatives out;
+  const int n = std::clamp(order, 0, 3);
+  for (int k = 0; k <= n; ++k) out[k] = s * (a[k] * t1_ + b[k] * t2_);
+  out[0] += corner_;
+  return out;
+}
+
+double corner_deviation(const Curve& c, const Vec3& before, const Vec3& corner, const Vec3& after) {
+  auto dev = [&](double u) {
+    const Vec3 p = c.point(u);
+    return std::min(segment_distance(p, before, corner), segment_distance(p, corner, after));
+  };
+  const int n = tolerances::blend_deviation_samples;
+  const double u0 = c.u_min(), h = (c.u_max() - c.u_min()) / n;
+  double best = 0.0;
+  int best_k = 0;
+  for (int k = 0; k <= n; ++k) {
+    const double v = dev(u0 + h * k);
+    if (v > best) {
+      best = v;
+      best_k = k;
+    }
+  }
+  double lo = std::max(c.u_min(), u0 + h * (best_k - 1)), hi = std::min(c.u_max(), u0 + h * (best_k + 1));
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo), f1 = dev(x1), f2 = dev(x2);
+  for (int i = 0; i < 60; ++i) {
+    if (f1 < f2) {
+      lo = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = lo + g * (hi - lo);
+      f2 = dev(x2);
+    } else {
+      hi = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = hi - g * (hi - lo);
+      f1 = dev(x1);
+    }
+  }
+  return std::max({best, f1, f2});
+}
+
+double unit_blend_deviation(const Vec3& t1, const Vec3& t2) {
+  const CornerBlendCurve c(Vec3::Zero(), t1, t2, 1.0);
+  return corner_deviation(c, -t1, Vec3::Zero(), t2);
+}
+
+}  // namespace kontur

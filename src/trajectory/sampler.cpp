@@ -1,0 +1,85 @@
+#include <kontur/trajectory/sampler.hpp>
+
+#include <algorithm>
+
+namespace kontur::trajectory {
+
+void Sampler::emit(Setpoint& out, double t, const Vec3& p, double v, long line, program::MoveId move) const noexcept {
+  out.t_s = t;
+  out.position = layout_.from_tool(p);
+  out.v_mm_s = v;
+  out.source_line = line;
+  out.move = move;
+}
+
+bool Sampler::next(Setpoint& out) noexcept {
+  if (end_given_) return false;
+  Trajectory& tr = *trajectory_;
+  if (!started_) {
+    if (current_ >= tr.end_index()) {
+      if (tr.closed()) end_given_ = true;  // an empty program: nothing to give
+      return false;
+    }
+    started_ = true;
+    const Segment& m = tr.segment(current_);
+    u_ = m.u0;
+    s_ = m.s0_mm;
+    t_move_ = 0.0;
+    const bool holding = m.hold_before_s > 0.0;
+    emit(out, 0.0, m.curve->point(u_), holding ? 0.0 : m.profile.sample(0.0).v,
+         holding ? m.hold_before_line : m.source_line, holding ? m.hold_before_move : m.move);
+    return true;
+  }
+  double t_move = t_move_ + period_;
+  // Move on to the following segments while this cycle lies beyond the current one.
+  while (current_ < tr.end_index() && t_move >= tr.segment(current_).duration()) {
+    if (current_ + 1 >= tr.end_index()) {
+      if (!tr.closed()) return false;  // wait for the planner
+      // The last segment: its end at rest is the last setpoint.
+      const Segment& m = tr.segment(current_);
+      t_ += period_;
+      emit(out, t_, m.curve->point(m.u1), 0.0, m.hold_after_s > 0.0 ? m.hold_after_line : m.source_line, m.move);
+      end_given_ = true;
+      return true;
+    }
+    // (t_move_ too: if the planner makes us wait below, the next call goes on from here)
+    t_move -= tr.segment(current_).duration();
+    t_move_ -= tr.segment(current_).duration();
+    ++current_;
+    tr.mark_done_before(current_);
+    u_ = tr.segment(current_).u0;
+    s_ = tr.segment(current_).s0_mm;
+  }
+  if (current_ >= tr.end_index()) return false;
+  const Segment& m = tr.segment(current_);
+  const double t_profile = t_move - m.hold_before_s;
+  PathState st;
+  long line = m.source_line;
+  program::MoveId move = m.move;
+  if (t_profile <= 0.0) {
+    if (m.hold_before_s > 0.0) {  // dwelling before the segment
+      line = m.hold_before_line;
+      move = m.hold_before_move;
+    }
+  } else if (t_profile >= m.profile.duration()) {
+    st.s = m.profile.distance();  // dwelling after the segment
+    line = m.hold_after_line;
+  } else {
+    st = m.profile.sample(t_profile);
+  }
+  const double s_target = m.s0_mm + st.s;
+  if (st.s >= m.profile.distance() || s_target >= m.s1_mm) {
+    u_ = m.u1;
+  } else if (s_target > s_) {
+    // (u_after starts from the Taylor series of u(s) at u_; no hint needed: it falls back to the
+    // table interval's linear guess)
+    u_ = m.table->u_after(u_, s_, s_target, u_);
+  }
+  s_ = std::max(s_, s_target);
+  t_move_ = t_move;
+  t_ += period_;
+  emit(out, t_, m.curve->point(u_), st.v, line, move);
+  return true;
+}
+
+}  // namespace kontur::trajectory
