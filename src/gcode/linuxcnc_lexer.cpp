@@ -1,4 +1,4 @@
-#include "line_parser.hpp"
+#include "linuxcnc_lexer.hpp"
 
 #include <kontur/error.hpp>
 
@@ -256,10 +256,6 @@ private:
 };
 
 }  // namespace
-
-void fail_column(const LineContext& ctx, int column, const char* rule, const std::string& message) {
-  throw InputError(rule, fmt::format("{}:{}:{}: {}", ctx.file, ctx.line, column, message));
-}
 
 void fail_at(const NormalizedLine& line, std::size_t pos, const LineContext& ctx, const char* rule,
              const std::string& message) {
