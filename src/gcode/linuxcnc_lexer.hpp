@@ -41,9 +41,24 @@ struct Assignment {
 void parse_words(const NormalizedLine& line, const LineContext& ctx, const ParameterTable& parameters, Words& words,
                  std::vector<Assignment>& assignments, std::size_t& assignment_count);
 
-/// Evaluates a real value at text[pos..] (used by parse_words and evaluate_expression); advances pos.
+/// Evaluates a real value at text[pos..] (used by parse_words and evaluate_expression); advances pos
+/// (linuxcnc_expression.cpp).
 double parse_real_value(const NormalizedLine& line, std::size_t& pos, const LineContext& ctx,
                         const ParameterTable& parameters);
+
+/// After '#' (text[pos] is '<'): the name of a named parameter, upper case; advances pos past '>'.
+std::string_view parse_parameter_name(const NormalizedLine& line, std::size_t& pos, const LineContext& ctx,
+                                      const ParameterTable& parameters);
+/// After '#' (at `start`): the number of a numbered parameter, an integer 1..5602; advances pos.
+int parse_parameter_index(const NormalizedLine& line, std::size_t& pos, std::size_t start, const LineContext& ctx,
+                          const ParameterTable& parameters);
+
+/// A G/M code or parameter number must be this close to an integer.
+inline constexpr double integer_tolerance = 1e-6;
+inline bool is_letter(char c) noexcept { return c >= 'A' && c <= 'Z'; }
+inline bool is_digit(char c) noexcept { return c >= '0' && c <= '9'; }
+/// A short excerpt of the normalised text from pos ("end of line" past it), for messages.
+std::string excerpt(const NormalizedLine& line, std::size_t pos, std::size_t max_len = 24);
 
 /// Throws InputError "file:line:col: message" for the character at text[pos] of the line.
 [[noreturn]] void fail_at(const NormalizedLine& line, std::size_t pos, const LineContext& ctx, const char* rule,

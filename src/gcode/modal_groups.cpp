@@ -4,6 +4,7 @@
 #include "message_format.hpp"
 
 #include <algorithm>
+#include <array>
 #include <iterator>
 
 namespace kontur::gcode::detail {
@@ -71,15 +72,28 @@ constexpr bool sorted_m() {
     if (!(m_codes[i - 1].m < m_codes[i].m)) return false;
   return true;
 }
-static_assert(sorted_g() && sorted_m(), "the code tables must be sorted for the binary search");
+static_assert(sorted_g() && sorted_m(), "the code tables must be sorted");
+
+// Every G code times 10 below this has a slot in g_index (G97 and below).
+constexpr int g_index_size = 1000;
+// g_index[g10]: the entry of g_codes for that code, -1 for none (a direct lookup, as fast as a switch).
+constexpr std::array<short, g_index_size> make_g_index() {
+  std::array<short, g_index_size> index{};
+  for (auto& i : index) i = -1;
+  for (std::size_t i = 0; i < std::size(g_codes); ++i) index[static_cast<std::size_t>(g_codes[i].g10)] = static_cast<short>(i);
+  return index;
+}
+constexpr std::array<short, g_index_size> g_index = make_g_index();
+static_assert(std::size(g_codes) < 32767 && g_codes[std::size(g_codes) - 1].g10 < g_index_size);
 
 }  // namespace
 
 CodeInfo g_code_info(int g10) noexcept {
-  const auto* it = std::lower_bound(std::begin(g_codes), std::end(g_codes), g10,
-                                    [](const GCodeEntry& e, int g) { return e.g10 < g; });
-  if (it == std::end(g_codes) || it->g10 != g10) return {};
-  return CodeInfo{it->group, it->unsupported};
+  if (g10 < 0 || g10 >= g_index_size) return {};
+  const short i = g_index[static_cast<std::size_t>(g10)];
+  if (i < 0) return {};
+  const GCodeEntry& e = g_codes[static_cast<std::size_t>(i)];
+  return CodeInfo{e.group, e.unsupported};
 }
 
 CodeInfo m_code_info(int m) noexcept {
