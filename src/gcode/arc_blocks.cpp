@@ -1,6 +1,6 @@
 // Circular blocks: G2 / G3 arcs and helices in a plane (I J K or R, P turns), the 3-D circle
 // through an intermediate point (Sinumerik CIP, Fanuc G02.4 / G03.4), and Kontur's CONIC block.
-#include "interpreter.hpp"
+#include "executor.hpp"
 #include <kontur/geometry/circle_through_points.hpp>
 #include <kontur/geometry/conic_through_points.hpp>
 
@@ -8,9 +8,9 @@
 #include <cmath>
 #include <cstring>
 
-namespace kontur::gcode {
+namespace kontur::gcode::detail {
 
-void Reader::Impl::arc(bool clockwise, const Vec3& to, int col) {
+void Executor::arc(bool clockwise, const Vec3& to, int col) {
   const std::string word = clockwise ? "G2" : "G3";
   const Feed feed = feed_move(word);
   const PlaneAxes pa = plane_axes(modal.plane);
@@ -18,21 +18,21 @@ void Reader::Impl::arc(bool clockwise, const Vec3& to, int col) {
   const char plane_name[3][3] = {"XY", "ZX", "YZ"};
   const int pidx = static_cast<int>(modal.plane);
   // the offset word of the normal axis is not allowed
-  if (w.has(offset_letter[pa.n]))
-    fail(w.col(offset_letter[pa.n]), "arc-offset",
+  if (w->has(offset_letter[pa.n]))
+    fail(w->col(offset_letter[pa.n]), "arc-offset",
          fmt::format("{}: {} not allowed for an arc in the {} plane (G{}), which uses {} and {}", word,
                      offset_letter[pa.n], plane_name[pidx], pidx == 0 ? 17 : pidx == 1 ? 18 : 19,
                      offset_letter[pa.a1], offset_letter[pa.a2]));
-  const bool has_ijk = w.has(offset_letter[pa.a1]) || w.has(offset_letter[pa.a2]);
-  const bool has_r = w.has('R');
+  const bool has_ijk = w->has(offset_letter[pa.a1]) || w->has(offset_letter[pa.a2]);
+  const bool has_r = w->has('R');
   if (!has_ijk && !has_r)
     fail(col, "arc-centre-missing",
          fmt::format("{}: {} {} (centre) or R (radius) missing", word, offset_letter[pa.a1], offset_letter[pa.a2]));
   int turns = 1;
-  if (w.has('P')) {
-    const double p = w.get('P');
+  if (w->has('P')) {
+    const double p = w->get('P');
     if (p != std::floor(p) || p < 1.0 || p > tolerances::gcode_max_arc_turns)
-      fail(w.col('P'), "arc-turns", fmt::format("{} P{}: turns must be an integer 1..{}", word, num(p), tolerances::gcode_max_arc_turns));
+      fail(w->col('P'), "arc-turns", fmt::format("{} P{}: turns must be an integer 1..{}", word, num(p), tolerances::gcode_max_arc_turns));
     turns = static_cast<int>(p);
   }
   const Vec3 n = unit(pa.n), e_a1 = unit(pa.a1), e_a2 = unit(pa.a2);
@@ -41,34 +41,34 @@ void Reader::Impl::arc(bool clockwise, const Vec3& to, int col) {
   Vec3 centre;
   const double tol_abs = tolerances::gcode_arc_radius_absolute_mm;
   if (has_ijk) {
-    const double i1 = w.has(offset_letter[pa.a1]) ? w.get(offset_letter[pa.a1]) * scale() : 0.0;
-    const double i2 = w.has(offset_letter[pa.a2]) ? w.get(offset_letter[pa.a2]) * scale() : 0.0;
+    const double i1 = w->has(offset_letter[pa.a1]) ? w->get(offset_letter[pa.a1]) * scale() : 0.0;
+    const double i2 = w->has(offset_letter[pa.a2]) ? w->get(offset_letter[pa.a2]) * scale() : 0.0;
     if (modal.arc_distance == DistanceMode::incremental) centre = s_p + i1 * e_a1 + i2 * e_a2;
     else centre = i1 * e_a1 + i2 * e_a2;
     if (has_r) {
       const double r_ijk = (s_p - centre).norm();
-      const double r = std::abs(w.get('R') * scale());
+      const double r = std::abs(w->get('R') * scale());
       if (std::abs(r_ijk - r) > std::max(tol_abs, tolerances::gcode_arc_radius_relative * r))
-        fail(w.col('R'), "arc-r-inconsistent",
+        fail(w->col('R'), "arc-r-inconsistent",
              fmt::format("{}: R{} and the radius {} mm of {} {} disagree: I/J/K inconsistent with R", word,
-                         num(w.get('R')), num(r_ijk), offset_letter[pa.a1], offset_letter[pa.a2]));
+                         num(w->get('R')), num(r_ijk), offset_letter[pa.a1], offset_letter[pa.a2]));
     }
   } else {
-    const double r_signed = w.get('R') * scale();
+    const double r_signed = w->get('R') * scale();
     const double r = std::abs(r_signed);
     const Vec3 chord = e_p - s_p;
     const double c = chord.norm();
     if (c <= tolerances::gcode_same_point_mm)
       fail(col, "arc-r-full-circle",
            fmt::format("{} R{}: the end point is the start point; a full circle needs {} {} (the centre)", word,
-                       num(w.get('R')), offset_letter[pa.a1], offset_letter[pa.a2]));
-    if (!(r > 0.0)) fail(w.col('R'), "arc-radius", fmt::format("{} R{}: radius must not be zero", word, num(w.get('R'))));
+                       num(w->get('R')), offset_letter[pa.a1], offset_letter[pa.a2]));
+    if (!(r > 0.0)) fail(w->col('R'), "arc-radius", fmt::format("{} R{}: radius must not be zero", word, num(w->get('R'))));
     double h2 = r * r - c * c / 4.0;
     if (h2 < 0.0) {
       if (c / 2.0 - r > std::max(tol_abs, tolerances::gcode_arc_radius_relative * r))
-        fail(w.col('R'), "arc-radius-too-small",
+        fail(w->col('R'), "arc-radius-too-small",
              fmt::format("{} R{}: radius smaller than half the distance {} mm from start to end", word,
-                         num(w.get('R')), num(c)));
+                         num(w->get('R')), num(c)));
       h2 = 0.0;
     }
     const Vec3 u = chord / c;
@@ -111,7 +111,7 @@ void Reader::Impl::arc(bool clockwise, const Vec3& to, int col) {
   pos = to;
 }
 
-void Reader::Impl::emit_circle(const Vec3& mid, const Vec3& to, int col, const std::string& word) {
+void Executor::emit_circle(const Vec3& mid, const Vec3& to, int col, const std::string& word) {
   const Feed feed = feed_move(word);
   Block b = make_block(BlockType::circle_3d, col);
   b.start = to_machine(pos);
@@ -124,11 +124,11 @@ void Reader::Impl::emit_circle(const Vec3& mid, const Vec3& to, int col, const s
   pos = to;
 }
 
-HelixArc Reader::Impl::make_circle_3d(const Vec3& r1, const Vec3& r2, const Vec3& r3) {
+HelixArc Executor::make_circle_3d(const Vec3& r1, const Vec3& r2, const Vec3& r3) {
   return circle_through_points(r1, r2, r3).curve();
 }
 
-void Reader::Impl::circle_block(int motion, int col) {
+void Executor::circle_block(int motion, int col) {
   if (!has_axes()) return;
   if (!circle_pending) {
     circle_pending = true;
@@ -142,48 +142,48 @@ void Reader::Impl::circle_block(int motion, int col) {
   Vec3 end_point = circle_mid;
   const char letters[3] = {'X', 'Y', 'Z'};
   for (int a = 0; a < 3; ++a)
-    if (w.has(letters[a])) {
-      const double v = w.get(letters[a]) * scale();
+    if (w->has(letters[a])) {
+      const double v = w->get(letters[a]) * scale();
       end_point[a] = modal.distance == DistanceMode::absolute ? v : circle_mid[a] + v;
     } else {
       end_point[a] = modal.distance == DistanceMode::absolute ? pos[a] : circle_mid[a];
     }
   circle_pending = false;
   // the circle is the block of its first line: report its errors there
-  const long this_line = line_no;
-  line_no = ctx.line = circle_loc.line;
+  const long this_line = diag.line();
+  diag.set_line(circle_loc.line);
   emit_circle(circle_mid, end_point, circle_loc.column, g_name(circle_g, true));
-  line_no = ctx.line = this_line;
+  diag.set_line(this_line);
   queue.back().location = circle_loc;
 }
 
-Vec3 Reader::Impl::indexed_point(int point) const {
+Vec3 Executor::indexed_point(int point) const {
   Vec3 p = pos;
   for (int a = 0; a < 3; ++a)
-    if (w.has_indexed(point, a)) {
-      const double v = w.indexed[static_cast<std::size_t>(point)][static_cast<std::size_t>(a)] * scale();
+    if (w->has_indexed(point, a)) {
+      const double v = w->indexed[static_cast<std::size_t>(point)][static_cast<std::size_t>(a)] * scale();
       p[a] = modal.distance == DistanceMode::absolute ? v : pos[a] + v;
     }
   return p;
 }
 
-void Reader::Impl::cip(const Vec3& to, int col) {
+void Executor::cip(const Vec3& to, int col) {
   for (int p = 1; p < 3; ++p)
     for (int a = 0; a < 3; ++a)
-      if (w.has_indexed(p, a))
-        fail(w.indexed_column[static_cast<std::size_t>(p)][static_cast<std::size_t>(a)], "cip-words",
+      if (w->has_indexed(p, a))
+        fail(w->indexed_column[static_cast<std::size_t>(p)][static_cast<std::size_t>(a)], "cip-words",
              fmt::format("CIP: {}{}= not allowed (CIP has one intermediate point I1= J1= K1=)", static_cast<char>('I' + a), p + 1));
-  if (!(w.indexed_present & 7u))
+  if (!(w->indexed_present & 7u))
     fail(col, "cip-intermediate-missing", "CIP: intermediate point missing (I1= J1= K1=)");
   if (!has_axes()) fail(col, "cip-end-missing", "CIP: end point missing (X Y Z)");
   emit_circle(indexed_point(0), to, col, "CIP");
 }
 
-void Reader::Impl::conic(const Vec3& to, int col) {
+void Executor::conic(const Vec3& to, int col) {
   static constexpr const char* names[3] = {"I", "J", "K"};
   for (int p = 0; p < 3; ++p)
     for (int a = 0; a < 3; ++a)
-      if (!w.has_indexed(p, a))
+      if (!w->has_indexed(p, a))
         fail(col, "conic-words",
              fmt::format("CONIC: {}{}= missing: a conic needs three intermediate points I1= J1= K1= I2= J2= K2= I3= "
                          "J3= K3= and the end point X Y Z",
@@ -205,4 +205,4 @@ void Reader::Impl::conic(const Vec3& to, int col) {
   pos = to;
 }
 
-}  // namespace kontur::gcode
+}  // namespace kontur::gcode::detail

@@ -1,13 +1,13 @@
 // Canned drilling cycles G73, G81, G82, G83 with G98 / G99, expanded into rapid and feed moves.
-#include "interpreter.hpp"
+#include "executor.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 
-namespace kontur::gcode {
+namespace kontur::gcode::detail {
 
-void Reader::Impl::cycle(int motion, int col) {
+void Executor::cycle(int motion, int col) {
   const std::string word = g_name(motion);
   const int cycle_number = motion / 10;
   if (modal.plane != Plane::xy) fail(col, "cycle-plane", fmt::format("{}: canned cycles only in the XY plane (G17)", word));
@@ -15,29 +15,29 @@ void Reader::Impl::cycle(int motion, int col) {
     fail(col, "cycle-feed-mode", fmt::format("{}: canned cycles not allowed with G93 (inverse time)", word));
   const Feed feed = feed_move(word);
   const double s = scale();
-  if (w.has('R')) {
-    cycle_r = w.get('R') * s;
+  if (w->has('R')) {
+    cycle_r = w->get('R') * s;
     cycle_r_set = true;
   }
-  if (w.has('Z')) {
-    cycle_z = w.get('Z') * s;
+  if (w->has('Z')) {
+    cycle_z = w->get('Z') * s;
     cycle_z_set = true;
   }
-  if (w.has('Q')) {
-    cycle_q = w.get('Q') * s;
+  if (w->has('Q')) {
+    cycle_q = w->get('Q') * s;
     cycle_q_set = true;
   }
-  if (w.has('P')) cycle_p = w.get('P');
+  if (w->has('P')) cycle_p = w->get('P');
   if (!cycle_z_set) fail(col, "cycle-words", fmt::format("{}: Z (hole bottom) missing", word));
   if (!cycle_r_set) fail(col, "cycle-words", fmt::format("{}: R (retract plane) missing", word));
   if ((motion == 730 || motion == 830) && !(cycle_q_set && cycle_q > 0.0))
-    fail(w.has('Q') ? w.col('Q') : col, "cycle-peck", fmt::format("{}: Q (peck depth) missing or not > 0", word));
-  if (cycle_p < 0.0) fail(w.col('P'), "cycle-words", fmt::format("{} P{}: dwell must be >= 0", word, num(cycle_p)));
+    fail(w->has('Q') ? w->col('Q') : col, "cycle-peck", fmt::format("{}: Q (peck depth) missing or not > 0", word));
+  if (cycle_p < 0.0) fail(w->col('P'), "cycle-words", fmt::format("{} P{}: dwell must be >= 0", word, num(cycle_p)));
   int repeats = 1;
-  if (w.has('L')) {
-    const double l = w.get('L');
+  if (w->has('L')) {
+    const double l = w->get('L');
     if (l != std::floor(l) || l < 0.0 || l > tolerances::gcode_max_cycle_repeats)
-      fail(w.col('L'), "cycle-repeat", fmt::format("{} L{}: repeats must be an integer 0..{}", word, num(l), tolerances::gcode_max_cycle_repeats));
+      fail(w->col('L'), "cycle-repeat", fmt::format("{} L{}: repeats must be an integer 0..{}", word, num(l), tolerances::gcode_max_cycle_repeats));
     repeats = static_cast<int>(l);
   }
   const bool incremental = modal.distance == DistanceMode::incremental;
@@ -48,7 +48,7 @@ void Reader::Impl::cycle(int motion, int col) {
   if (motion == 730 || motion == 830) {
     const double pecks = (r_plane - bottom) / cycle_q;
     if (pecks > tolerances::gcode_max_pecks)
-      fail(w.has('Q') ? w.col('Q') : col, "cycle-peck", fmt::format("{}: Q {} mm gives more than {} pecks", word, num(cycle_q), tolerances::gcode_max_pecks));
+      fail(w->has('Q') ? w->col('Q') : col, "cycle-peck", fmt::format("{}: Q {} mm gives more than {} pecks", word, num(cycle_q), tolerances::gcode_max_pecks));
   }
   {
     const double pecks = (motion == 730 || motion == 830) ? std::ceil((r_plane - bottom) / cycle_q) : 1.0;
@@ -67,8 +67,8 @@ void Reader::Impl::cycle(int motion, int col) {
     Vec3 hole = pos;
     const char letters[2] = {'X', 'Y'};
     for (int a = 0; a < 2; ++a)
-      if (w.has(letters[a])) {
-        const double v = w.get(letters[a]) * s;
+      if (w->has(letters[a])) {
+        const double v = w->get(letters[a]) * s;
         hole[a] = incremental ? pos[a] + v : v;
       }
     rapid_to(Vec3(hole.x(), hole.y(), pos.z()));
@@ -100,4 +100,4 @@ void Reader::Impl::cycle(int motion, int col) {
   }
 }
 
-}  // namespace kontur::gcode
+}  // namespace kontur::gcode::detail

@@ -1,7 +1,7 @@
 #include <kontur/error.hpp>
 #include <kontur/gcode/expression.hpp>
 
-#include "line_parser.hpp"
+#include "linuxcnc_lexer.hpp"
 
 #include <fmt/format.h>
 

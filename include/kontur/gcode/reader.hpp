@@ -23,6 +23,14 @@
 
 namespace kontur::gcode {
 
+/// The G-code dialect a program is written in: how it spells comments, parameters, expressions
+/// and control flow (docs/gcode.md, "Dialects"). The blocks it gives are the same for every dialect.
+enum class Dialect {
+  linuxcnc,  ///< LinuxCNC's RS274NGC: #parameters, [expressions], O-word subroutines and loops
+};
+/// Stable lower-case name of a dialect ("linuxcnc").
+[[nodiscard]] const char* to_string(Dialect dialect) noexcept;
+
 /// Reader settings.
 struct ReaderOptions {
   /// Block delete switch: lines starting with '/' are skipped when true (the default), read when false.
@@ -32,6 +40,8 @@ struct ReaderOptions {
   /// O-word loop iterations and subroutine calls allowed in the whole program; more is an error
   /// (an endless loop). Default tolerances::gcode_max_loop_iterations.
   long max_loop_iterations = tolerances::gcode_max_loop_iterations;
+  /// The program's dialect (last, so that positional initialisers of the fields above still work).
+  Dialect dialect = Dialect::linuxcnc;
 };
 
 /// Reads a program and hands out its blocks one by one.

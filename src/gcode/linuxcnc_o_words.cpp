@@ -1,25 +1,26 @@
 // LinuxCNC O-word control flow: subroutines, loops and conditionals, by seeking back in the
 // streamed program (docs/gcode.md, "O-words").
-#include "interpreter.hpp"
+#include "linuxcnc_front_end.hpp"
+#include "message_format.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 
-namespace kontur::gcode {
+namespace kontur::gcode::detail {
 
-Reader::Impl::OWord Reader::Impl::parse_oword(const detail::NormalizedLine& line) const {
+LinuxcncFrontEnd::OWord LinuxcncFrontEnd::parse_oword(const NormalizedLine& line) const {
   const std::string& t = line.text;
   OWord o;
   std::size_t p = 1;
   if (p < t.size() && t[p] == '<') {
     const std::size_t close = t.find('>', p);
-    if (close == std::string::npos) detail::fail_at(line, 0, ctx, "o-word", "O<: '>' missing in the O-word label");
+    if (close == std::string::npos) fail_at(line, 0, diag.context(), "o-word", "O<: '>' missing in the O-word label");
     o.label = t.substr(0, close + 1);
     p = close + 1;
   } else {
     while (p < t.size() && t[p] >= '0' && t[p] <= '9') ++p;
-    if (p == 1) detail::fail_at(line, 0, ctx, "o-word", fmt::format("'{}': O needs a number or <name>", t.substr(0, 20)));
+    if (p == 1) fail_at(line, 0, diag.context(), "o-word", fmt::format("'{}': O needs a number or <name>", t.substr(0, 20)));
     o.label = t.substr(0, p);
   }
   static const std::pair<const char*, OKind> keywords[] = {
@@ -36,61 +37,59 @@ Reader::Impl::OWord Reader::Impl::parse_oword(const detail::NormalizedLine& line
       return o;
     }
   }
-  detail::fail_at(line, p, ctx, "o-word",
+  fail_at(line, p, diag.context(), "o-word",
                   fmt::format("'{}': unknown O-word keyword (sub endsub call return while endwhile do repeat endrepeat "
                               "if elseif else endif break continue)",
                               t.substr(0, 24)));
 }
 
-double Reader::Impl::o_value(const OWord& o, std::size_t& at, const char* what) const {
+double LinuxcncFrontEnd::o_value(const OWord& o, std::size_t& at, const char* what) const {
   if (at >= nl.text.size())
-    detail::fail_at(nl, at, ctx, "o-word", fmt::format("{} {}: [value] missing", o.label, what));
-  return detail::parse_real_value(nl, at, ctx, params);
+    fail_at(nl, at, diag.context(), "o-word", fmt::format("{} {}: [value] missing", o.label, what));
+  return parse_real_value(nl, at, diag.context(), params);
 }
 
-void Reader::Impl::o_end_of_line(std::size_t at) const {
+void LinuxcncFrontEnd::o_end_of_line(std::size_t at) const {
   if (at < nl.text.size())
-    detail::fail_at(nl, at, ctx, "syntax", fmt::format("'{}': unexpected text after the O-word", nl.text.substr(at, 20)));
+    fail_at(nl, at, diag.context(), "syntax", fmt::format("'{}': unexpected text after the O-word", nl.text.substr(at, 20)));
 }
 
-Reader::Impl::OWord Reader::Impl::skip_to(const std::string& label, std::initializer_list<OKind> kinds, const char* what) {
-  const long from = line_no;
+LinuxcncFrontEnd::OWord LinuxcncFrontEnd::skip_to(const std::string& label, std::initializer_list<OKind> kinds, const char* what) {
+  const long from = diag.line();
   std::string_view raw;
-  while (read_line(raw)) {
-    detail::normalize_line(raw, ctx, nl);
+  while (input.read_line(raw)) {
+    normalize_line(raw, diag.context(), nl);
     if (nl.text.empty() || nl.text[0] != 'O') continue;
     const OWord o = parse_oword(nl);
     if (o.label != label) continue;
     for (const OKind k : kinds)
       if (o.kind == k) return o;
   }
-  fail_column(from, 1, "o-word", fmt::format("{}: {} not found before the end of the file", label, what));
+  diag.fail_at_line(from, 1, "o-word", fmt::format("{}: {} not found before the end of the file", label, what));
 }
 
-Reader::Impl::Frame* Reader::Impl::find_frame(const std::string& label) {
+LinuxcncFrontEnd::Frame* LinuxcncFrontEnd::find_frame(const std::string& label) {
   for (auto it = frames.rbegin(); it != frames.rend(); ++it)
     if (it->label == label) return &*it;
   return nullptr;
 }
 
-void Reader::Impl::loop_guard(const std::string& label) {
+void LinuxcncFrontEnd::loop_guard(const std::string& label) {
   if (++loop_iterations > opt.max_loop_iterations)
-    fail_column(line_no, 1, "o-word-loop",
+    diag.fail_at_line(diag.line(), 1, "o-word-loop",
                 fmt::format("{}: more than {} loop iterations and calls in the program (endless loop?)", label,
                             opt.max_loop_iterations));
 }
 
-void Reader::Impl::control_flow() {
-  if (spline == Spline::g52)
-    fail(nl.first_column, "g52-open", "O-word inside an open G5.2 NURBS block (close it with G5.3 first)");
-  if (spline == Spline::g62) finish_g62();
+void LinuxcncFrontEnd::control_flow() {
+  executor.before_control_flow(nl.first_column);  // closes a G6.2 curve, rejects an open G5.2
   const OWord o = parse_oword(nl);
   std::size_t at = o.rest;
   const int col = nl.first_column;
   switch (o.kind) {
     case OKind::sub: {
       o_end_of_line(at);
-      subs[o.label] = SubStart{tell(), line_no + 1};
+      subs[o.label] = SubStart{input.tell(), diag.line() + 1};
       skip_to(o.label, {OKind::endsub}, "endsub");
       return;
     }
@@ -101,7 +100,7 @@ void Reader::Impl::control_flow() {
                                              o.label, o.label));
       loop_guard(o.label);
       if (frames.size() >= 64) fail(col, "o-word-call", fmt::format("{} call: calls nested more than 64 deep", o.label));
-      Frame f{OKind::call, o.label, tell(), line_no + 1};
+      Frame f{OKind::call, o.label, input.tell(), diag.line() + 1};
       f.call_column = col;
       for (int i = 0; i < 30; ++i) f.saved[static_cast<std::size_t>(i)] = params.numbered(i + 1);
       std::array<double, 30> args{};
@@ -112,7 +111,7 @@ void Reader::Impl::control_flow() {
       }
       for (int i = 0; i < 30; ++i) params.set_numbered(i + 1, args[static_cast<std::size_t>(i)]);
       frames.push_back(f);
-      seek(it->second.offset, it->second.line);
+      input.seek(it->second.offset, it->second.line);
       return;
     }
     case OKind::endsub:
@@ -127,7 +126,7 @@ void Reader::Impl::control_flow() {
       const Frame f = frames.back();
       frames.pop_back();
       for (int i = 0; i < 30; ++i) params.set_numbered(i + 1, f.saved[static_cast<std::size_t>(i)]);
-      seek(f.offset, f.line);
+      input.seek(f.offset, f.line);
       return;
     }
     case OKind::while_: {
@@ -137,7 +136,7 @@ void Reader::Impl::control_flow() {
         o_end_of_line(at);
         if (c != 0.0) {
           loop_guard(o.label);
-          seek(open->offset, open->line);
+          input.seek(open->offset, open->line);
         } else {
           while (frames.back().label != o.label) frames.pop_back();
           frames.pop_back();
@@ -147,13 +146,13 @@ void Reader::Impl::control_flow() {
       const double c = o_value(o, at, "while");
       o_end_of_line(at);
       if (c != 0.0) {
-        if (open && open->kind == OKind::while_ && open->offset == line_start) {
+        if (open && open->kind == OKind::while_ && open->offset == input.line_start()) {
           loop_guard(o.label);  // back at the head of a running loop
         } else {
-          frames.push_back(Frame{OKind::while_, o.label, line_start, line_no});
+          frames.push_back(Frame{OKind::while_, o.label, input.line_start(), diag.line()});
         }
       } else {
-        if (open && open->kind == OKind::while_ && open->offset == line_start) {
+        if (open && open->kind == OKind::while_ && open->offset == input.line_start()) {
           while (frames.back().label != o.label) frames.pop_back();
           frames.pop_back();
         }
@@ -165,12 +164,12 @@ void Reader::Impl::control_flow() {
       o_end_of_line(at);
       Frame* f = find_frame(o.label);
       if (!f || f->kind != OKind::while_) fail(col, "o-word", fmt::format("{} endwhile: no open {} while", o.label, o.label));
-      seek(f->offset, f->line);
+      input.seek(f->offset, f->line);
       return;
     }
     case OKind::do_:
       o_end_of_line(at);
-      frames.push_back(Frame{OKind::do_, o.label, tell(), line_no + 1});
+      frames.push_back(Frame{OKind::do_, o.label, input.tell(), diag.line() + 1});
       return;
     case OKind::repeat: {
       const double c = o_value(o, at, "repeat");
@@ -182,7 +181,7 @@ void Reader::Impl::control_flow() {
         skip_to(o.label, {OKind::endrepeat}, "endrepeat");
         return;
       }
-      Frame f{OKind::repeat, o.label, tell(), line_no + 1};
+      Frame f{OKind::repeat, o.label, input.tell(), diag.line() + 1};
       f.count = static_cast<long>(n);
       frames.push_back(f);
       return;
@@ -193,7 +192,7 @@ void Reader::Impl::control_flow() {
       if (!f || f->kind != OKind::repeat) fail(col, "o-word", fmt::format("{} endrepeat: no open {} repeat", o.label, o.label));
       if (--f->count > 0) {
         loop_guard(o.label);
-        seek(f->offset, f->line);
+        input.seek(f->offset, f->line);
       } else {
         while (frames.back().label != o.label) frames.pop_back();
         frames.pop_back();
@@ -203,7 +202,7 @@ void Reader::Impl::control_flow() {
     case OKind::if_: {
       double c = o_value(o, at, "if");
       o_end_of_line(at);
-      frames.push_back(Frame{OKind::if_, o.label, 0, line_no});
+      frames.push_back(Frame{OKind::if_, o.label, 0, diag.line()});
       while (c == 0.0) {  // find the branch to run
         const OWord next = skip_to(o.label, {OKind::elseif, OKind::else_, OKind::endif}, "endif");
         if (next.kind == OKind::endif) {
@@ -247,9 +246,9 @@ void Reader::Impl::control_flow() {
         Frame& top = frames.back();
         loop_guard(o.label);
         if (loop == OKind::while_) {
-          seek(top.offset, top.line);
+          input.seek(top.offset, top.line);
         } else if (loop == OKind::repeat) {
-          if (--top.count > 0) seek(top.offset, top.line);
+          if (--top.count > 0) input.seek(top.offset, top.line);
           else {
             frames.pop_back();
             skip_to(o.label, {OKind::endrepeat}, "endrepeat");
@@ -269,4 +268,4 @@ void Reader::Impl::control_flow() {
   }
 }
 
-}  // namespace kontur::gcode
+}  // namespace kontur::gcode::detail

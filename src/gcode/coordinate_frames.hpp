@@ -1,0 +1,77 @@
+#pragma once
+// Internal: the coordinate frames between program and machine coordinates: nine work offsets
+// (G54 .. G59.3, set by G10 L2 / L20) with an XY rotation each (G10 L2 R), and the G92 offset
+// (with the copy G92.3 restores). machine = Rz(R) (program + G92) + work offset, as LinuxCNC.
+// Dialect-neutral; lengths in [mm].
+#include <kontur/geometry/curve.hpp>
+
+#include <Eigen/Geometry>
+
+#include <array>
+#include <cstddef>
+#include <numbers>
+
+namespace kontur::gcode::detail {
+
+class CoordinateFrames {
+public:
+  /// Work coordinate systems 1..9 (G54 = 1 ... G59.3 = 9).
+  static constexpr int system_count = 9;
+
+  CoordinateFrames() {
+    for (auto& v : offset_) v.setZero();
+  }
+
+  /// The XY rotation of work system `system` (identity without one).
+  [[nodiscard]] Eigen::Matrix3d rotation(int system) const {
+    const double a = rotation_deg_[index(system)] * pi / 180.0;
+    Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
+    if (a != 0.0) r = Eigen::AngleAxisd(a, Vec3::UnitZ()).toRotationMatrix();
+    return r;
+  }
+  /// Program point `p` in machine coordinates, in work system `system`.
+  [[nodiscard]] Vec3 to_machine(const Vec3& p, int system) const {
+    return rotation(system) * (p + g92_) + offset_[index(system)];
+  }
+  /// Machine point `m` in program coordinates, in work system `system`.
+  [[nodiscard]] Vec3 to_program(const Vec3& m, int system) const {
+    return rotation(system).transpose() * (m - offset_[index(system)]) - g92_;
+  }
+
+  // ---- G10 L2 / L20
+  /// Sets the XY rotation [deg] of work system `system` (G10 L2 R).
+  void set_rotation_deg(int system, double degrees) noexcept { rotation_deg_[index(system)] = degrees; }
+  /// Sets one axis (0 X, 1 Y, 2 Z) of the offset of work system `system` [mm] (G10 L2).
+  void set_offset(int system, int axis, double mm) noexcept { offset_[index(system)][axis] = mm; }
+  /// The offset of work system `system` that gives the machine point `m` the program coordinates
+  /// `p` (G10 L20), with the system's rotation and the current G92 offset.
+  [[nodiscard]] Vec3 offset_placing(const Vec3& m, const Vec3& p, int system) const {
+    const double ang = rotation_deg_[index(system)] * pi / 180.0;
+    const Eigen::Matrix3d rot = Eigen::AngleAxisd(ang, Vec3::UnitZ()).toRotationMatrix();
+    return m - rot * (p + g92_);
+  }
+
+  // ---- G92 family
+  /// G92 on one axis: the current program coordinate `current` becomes `wanted` [mm].
+  void shift_g92(int axis, double current, double wanted) noexcept { g92_[axis] = current + g92_[axis] - wanted; }
+  /// Keeps the G92 offset for G92.3 (after G92).
+  void save_g92() noexcept { g92_saved_ = g92_; }
+  /// G92.1 (`forget_saved`) and G92.2: no G92 offset.
+  void clear_g92(bool forget_saved) noexcept {
+    g92_.setZero();
+    if (forget_saved) g92_saved_.setZero();
+  }
+  /// G92.3: the saved G92 offset again.
+  void restore_g92() noexcept { g92_ = g92_saved_; }
+
+private:
+  static constexpr double pi = std::numbers::pi;
+  static std::size_t index(int system) noexcept { return static_cast<std::size_t>(system); }
+
+  std::array<Vec3, system_count + 1> offset_{};  // [1..9] G54..G59.3 [mm]
+  std::array<double, system_count + 1> rotation_deg_{};
+  Vec3 g92_ = Vec3::Zero();
+  Vec3 g92_saved_ = Vec3::Zero();
+};
+
+}  // namespace kontur::gcode::detail

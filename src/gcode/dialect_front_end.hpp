@@ -1,0 +1,71 @@
+#pragma once
+// Internal: the seam between a G-code dialect and the dialect-neutral executor.
+//
+// A dialect front end turns the program's lines into the words of blocks (detail::Words): it knows
+// how its dialect spells comments, block delete, line numbers, parameters and expressions, and
+// it runs the dialect's control flow (LinuxCNC O-words; Fanuc GOTO / WHILE, Sinumerik labels and
+// GOTOF would be theirs) by seeking in the ProgramInput. The executor (executor.hpp) then runs
+// the words: modal state, frames and geometry, the same for every dialect.
+//
+// To add a dialect: a value in kontur::gcode::Dialect (reader.hpp), a class derived from
+// DialectFrontEnd (e.g. fanuc_front_end.hpp/.cpp), and its case in make_front_end
+// (dialect_registry.cpp). docs/gcode.md, "Dialects", says the same for users.
+#include "block_words.hpp"
+#include "diagnostics.hpp"
+#include "program_input.hpp"
+
+#include <kontur/gcode/expression.hpp>
+#include <kontur/gcode/reader.hpp>
+
+#include <memory>
+#include <string_view>
+
+namespace kontur::gcode::detail {
+
+/// What a dialect's control flow asks of the executor.
+class ControlFlowBarrier {
+public:
+  /// A control-flow line is about to run at `column` (it may jump): a multi-block construct still
+  /// open (a spline being collected) is closed, or rejected if it cannot be.
+  virtual void before_control_flow(int column) = 0;
+
+protected:
+  ~ControlFlowBarrier() = default;
+};
+
+/// Everything a front end works with; owned by the Reader and outliving the front end.
+struct DialectServices {
+  ProgramInput& input;            ///< the program text (read_line, seek)
+  ParameterTable& parameters;     ///< the program's parameters
+  Diagnostics& diagnostics;       ///< file, line, errors and warnings
+  const ReaderOptions& options;   ///< block delete, loop limit
+  ControlFlowBarrier& executor;   ///< told before control flow runs
+};
+
+/// What one line of the program turned into.
+enum class LineOutcome {
+  nothing,      ///< no block: empty, a comment, a deleted block, an assignment or control flow
+  words,        ///< the words of a block, to be run by the executor
+  program_end,  ///< the dialect's own end of program (LinuxCNC: the closing '%')
+};
+
+/// One dialect's lexing and control flow.
+class DialectFrontEnd {
+public:
+  virtual ~DialectFrontEnd() = default;
+  /// Which dialect this is.
+  [[nodiscard]] virtual Dialect dialect() const noexcept = 0;
+  /// Reads the line `raw` (just read from the input, without its end of line): fills `words` and
+  /// returns LineOutcome::words for a block, runs control flow or assignments otherwise.
+  virtual LineOutcome read_line(std::string_view raw, Words& words) = 0;
+  /// The input has ended: throws if control flow is left open (a sub, loop or if without its end).
+  virtual void at_end_of_input() = 0;
+  /// True if the program marked its own end (LinuxCNC: it started with '%'), so that a missing
+  /// M2 / M30 is not worth a warning.
+  [[nodiscard]] virtual bool program_marks_its_end() const noexcept = 0;
+};
+
+/// The front end of `dialect` (dialect_registry.cpp).
+[[nodiscard]] std::unique_ptr<DialectFrontEnd> make_front_end(Dialect dialect, const DialectServices& services);
+
+}  // namespace kontur::gcode::detail

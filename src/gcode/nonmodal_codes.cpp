@@ -1,0 +1,108 @@
+// The non-modal codes (group 0): G4 dwell, G10 work offsets, G28 / G30 home, G53 machine
+// coordinates, the G92 family. The frames themselves are CoordinateFrames.
+#include "executor.hpp"
+
+#include <cmath>
+
+namespace kontur::gcode::detail {
+
+bool Executor::run_nonmodal(const BlockCodes& codes) {
+  const int g = codes.code(g_nonmodal);
+  const int col = codes.column(g_nonmodal);
+  switch (g) {
+    case 100: g10(col); break;
+    case 280: case 300: home(g, col); break;
+    case 281: case 301: store_home(g); break;
+    case 530: return true;
+    case 920: case 921: case 922: case 923: g92(g, col); break;
+    default: break;  // G4 ran before the plane (dwell)
+  }
+  return false;
+}
+
+void Executor::dwell(int col) {
+  if (!w->has('P')) fail(col, "dwell", "G4: P (dwell time in seconds) missing");
+  const double p = w->get('P');
+  if (p < 0.0) fail(w->col('P'), "dwell", fmt::format("G4 P{}: dwell time must be >= 0", num(p)));
+  Block b = make_block(BlockType::dwell, col);
+  b.start = b.end = to_machine(pos);
+  b.dwell_s = p;
+  emit(std::move(b));
+}
+
+void Executor::g10(int col) {
+  if (!w->has('L')) fail(col, "g10", "G10: L missing (L2 or L20 set a work offset)");
+  const double l = w->get('L');
+  if (l == 1.0 || l == 10.0 || l == 11.0) {
+    warn(col, fmt::format("G10 L{}: tool table entries are ignored (tool offsets are recorded, not applied)", num(l)));
+    return;
+  }
+  if (l != 2.0 && l != 20.0) fail(w->col('L'), "g10", fmt::format("G10 L{}: unknown (L2 or L20 set a work offset)", num(l)));
+  if (!w->has('P')) fail(col, "g10", "G10: P missing (coordinate system 1..9, 0 = the active one)");
+  const double p = w->get('P');
+  if (p != std::floor(p) || p < 0.0 || p > 9.0)
+    fail(w->col('P'), "g10", fmt::format("G10 P{}: coordinate system must be 0..9", num(p)));
+  const int index = p == 0.0 ? modal.work_offset : static_cast<int>(p);
+  const Vec3 m = to_machine(pos);
+  const char letters[3] = {'X', 'Y', 'Z'};
+  if (w->has('R')) {
+    if (l == 20.0) fail(w->col('R'), "g10", "G10 L20: R (rotation) only with L2");
+    frames.set_rotation_deg(index, w->get('R'));
+  }
+  if (l == 2.0) {
+    for (int a = 0; a < 3; ++a)
+      if (w->has(letters[a])) frames.set_offset(index, a, w->get(letters[a]) * scale());
+  } else {
+    // L20: the offset that makes the current point have the given program coordinates
+    Vec3 p_new = pos;
+    for (int a = 0; a < 3; ++a)
+      if (w->has(letters[a])) p_new[a] = w->get(letters[a]) * scale();
+    const Vec3 off = frames.offset_placing(m, p_new, index);
+    for (int a = 0; a < 3; ++a)
+      if (w->has(letters[a])) frames.set_offset(index, a, off[a]);
+  }
+  if (index == modal.work_offset) pos = to_program(m);
+}
+
+void Executor::home(int g, int col) {
+  const int base = g == 280 ? 5161 : 5181;
+  Vec3 home_m(params.numbered(base) * scale(), params.numbered(base + 1) * scale(), params.numbered(base + 2) * scale());
+  if (has_axes()) {
+    const Vec3 via = target();
+    line_move(BlockType::rapid, via, col, Feed{});
+    Vec3 m = to_machine(pos);
+    const char letters[3] = {'X', 'Y', 'Z'};
+    for (int a = 0; a < 3; ++a)
+      if (w->has(letters[a])) m[a] = home_m[a];
+    line_move(BlockType::rapid, to_program(m), col, Feed{});
+  } else {
+    line_move(BlockType::rapid, to_program(home_m), col, Feed{});
+  }
+}
+
+void Executor::store_home(int g) {
+  const Vec3 m = to_machine(pos) / scale();
+  const int base = g == 281 ? 5161 : 5181;
+  for (int a = 0; a < 3; ++a) params.set_numbered(base + a, m[a]);
+}
+
+void Executor::g92(int g, int col) {
+  if (g == 920) {
+    if (!has_axes()) fail(col, "axis-words", "G92: axis words missing");
+    const char letters[3] = {'X', 'Y', 'Z'};
+    for (int a = 0; a < 3; ++a)
+      if (w->has(letters[a])) {
+        const double v = w->get(letters[a]) * scale();
+        frames.shift_g92(a, pos[a], v);
+        pos[a] = v;
+      }
+    frames.save_g92();
+    return;
+  }
+  const Vec3 m = to_machine(pos);
+  if (g == 923) frames.restore_g92();
+  else frames.clear_g92(g == 921);
+  pos = to_program(m);
+}
+
+}  // namespace kontur::gcode::detail
