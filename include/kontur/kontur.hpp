@@ -16,6 +16,7 @@
 #include <kontur/machine.hpp>
 #include <kontur/machine_limits.hpp>
 #include <kontur/geometry/nurbs.hpp>
+#include <kontur/plan/constraints.hpp>
 #include <kontur/plan/lookahead.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/plan/program_path.hpp>
