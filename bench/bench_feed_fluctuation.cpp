@@ -8,8 +8,6 @@
 // of them) and the ellipse, parabola and hyperbola of methods.md section 5.
 // The time column is the measurement's cost, not the interpolator's (see bench_interpolation).
 #include <benchmark/benchmark.h>
-#include <kontur/geometry/conic_through_points.hpp>
-#include <kontur/error.hpp>
 #include <kontur/interpolate/curve_interpolator.hpp>
 #include <kontur/io/curve_json.hpp>
 #include <kontur/geometry/span_polynomial.hpp>
@@ -18,7 +16,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,33 +34,10 @@ using bench::spans_of;
 
 std::vector<CurveSet> curve_sets() {
   std::vector<CurveSet> sets = bench::seed_curve_sets();
-  // methods.md section 5: (x, y) -> (100 + x, 200 + 0.6 y, 300 + 0.8 y).
-  const std::array<std::pair<const char*, std::array<Vec3, 5>>, 3> conics{{
-      {"ellipse", {Vec3(105, 200, 300), Vec3(104, 201.08, 301.44), Vec3(103, 201.44, 301.92), Vec3(100, 201.8, 302.4),
-                   Vec3(96, 201.08, 301.44)}},
-      {"parabola", {Vec3(96, 202.4, 303.2), Vec3(98, 200.6, 300.8), Vec3(100, 200, 300), Vec3(102, 200.6, 300.8),
-                    Vec3(106, 205.4, 307.2)}},
-      {"hyperbola", {Vec3(108.5, 196.625, 295.5), Vec3(105, 198.65, 298.2), Vec3(104, 200, 300),
-                     Vec3(105, 201.35, 301.8), Vec3(108.5, 203.375, 304.5)}},
-  }};
-  for (const auto& [name, pts] : conics)
-    sets.push_back({name, {std::make_shared<ConicArc>(conic_through_points(pts).curve())}});
-
-  const auto programs = bench::ngc_files(bench::shared_path("data/gcode/linuxcnc-nurbs"));
-  if (programs.empty()) std::fprintf(stderr, "note: ../shared/data/gcode/linuxcnc-nurbs absent: its rows are skipped\n");
-  CurveSet all{"linuxcnc_nurbs_all", {}};
-  for (const auto& p : programs) {
-    CurveSet s{p.stem().string(), {}};
-    try {
-      for (auto& c : bench::program_nurbs(p)) s.curves.push_back(std::shared_ptr<const Curve>(std::move(c.spans)));
-    } catch (const InputError& e) {  // a program Kontur does not read: reported, left out
-      std::fprintf(stderr, "note: %s left out: %s\n", p.filename().string().c_str(), e.what());
-      continue;
-    }
-    if (s.curves.empty()) continue;
-    all.curves.insert(all.curves.end(), s.curves.begin(), s.curves.end());
-    sets.push_back(std::move(s));
-  }
+  for (CurveSet& s : bench::conic_curve_sets()) sets.push_back(std::move(s));
+  const std::vector<CurveSet> programs = bench::linuxcnc_nurbs_sets();
+  sets.insert(sets.end(), programs.begin(), programs.end());
+  CurveSet all = bench::merged_curve_set("linuxcnc_nurbs_all", programs);
   if (!all.curves.empty()) sets.push_back(std::move(all));
   return sets;
 }

@@ -12,8 +12,6 @@
 //   ns_max_raw the slowest single call seen at all (preemption included: the OS, not Kontur)
 //   clock_p50  the cost of timing an empty call in this process [ns] (subtract it from ns_p50)
 #include <benchmark/benchmark.h>
-#include <kontur/geometry/conic_through_points.hpp>
-#include <kontur/error.hpp>
 #include <kontur/interpolate/curve_interpolator.hpp>
 #include <kontur/io/curve_json.hpp>
 #include <kontur/geometry/span_polynomial.hpp>
@@ -22,7 +20,6 @@
 #include "support_programs.hpp"
 
 #include <array>
-#include <cstdio>
 #include <map>
 #include <memory>
 #include <string>
@@ -47,27 +44,9 @@ std::vector<CurveSet> curve_sets() {
   o.repeated_knots = false;
   o.offset_knots = false;
   sets.push_back({"cubic40", {spans_of(NurbsCurve(testing::random_nurbs(testing::test_seed(), 42, o)))}});
-  CurveSet all{"linuxcnc_nurbs_all", {}};
-  const auto programs = bench::ngc_files(bench::shared_path("data/gcode/linuxcnc-nurbs"));
-  if (programs.empty()) std::fprintf(stderr, "note: ../shared/data/gcode/linuxcnc-nurbs absent: its rows are skipped\n");
-  for (const auto& p : programs) {
-    try {
-      for (auto& c : bench::program_nurbs(p)) all.curves.push_back(std::shared_ptr<const Curve>(std::move(c.spans)));
-    } catch (const InputError& e) {  // a program Kontur does not read: reported, left out
-      std::fprintf(stderr, "note: %s left out: %s\n", p.filename().string().c_str(), e.what());
-    }
-  }
+  CurveSet all = bench::merged_curve_set("linuxcnc_nurbs_all", bench::linuxcnc_nurbs_sets());
   if (!all.curves.empty()) sets.push_back(std::move(all));
-  const std::array<std::pair<const char*, std::array<Vec3, 5>>, 3> conics{{
-      {"ellipse", {Vec3(105, 200, 300), Vec3(104, 201.08, 301.44), Vec3(103, 201.44, 301.92), Vec3(100, 201.8, 302.4),
-                   Vec3(96, 201.08, 301.44)}},
-      {"parabola", {Vec3(96, 202.4, 303.2), Vec3(98, 200.6, 300.8), Vec3(100, 200, 300), Vec3(102, 200.6, 300.8),
-                    Vec3(106, 205.4, 307.2)}},
-      {"hyperbola", {Vec3(108.5, 196.625, 295.5), Vec3(105, 198.65, 298.2), Vec3(104, 200, 300),
-                     Vec3(105, 201.35, 301.8), Vec3(108.5, 203.375, 304.5)}},
-  }};
-  for (const auto& [name, pts] : conics)
-    sets.push_back({name, {std::make_shared<ConicArc>(conic_through_points(pts).curve())}});
+  for (CurveSet& s : bench::conic_curve_sets()) sets.push_back(std::move(s));
   return sets;
 }
 

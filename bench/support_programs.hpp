@@ -1,7 +1,9 @@
 #pragma once
 // Helpers of the benchmarks on real part programs (../shared/data/gcode, optional: callers skip
 // when it is absent) and of per-call timing (worst case, high percentiles, the clock's own cost).
+#include <kontur/error.hpp>
 #include <kontur/gcode/reader.hpp>
+#include <kontur/geometry/conic_through_points.hpp>
 #include <kontur/io/curve_json.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/geometry/nurbs.hpp>
@@ -10,7 +12,9 @@
 #include <kontur/geometry/span_polynomial.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <cstdio>
 #include <cstddef>
 #include <filesystem>
 #include <memory>
@@ -167,6 +171,50 @@ inline std::vector<CurveSet> seed_curve_sets() {
     sets.push_back({"seed_example" + std::to_string(i), {spans_of(read_curve_json(path))}});
   }
   return sets;
+}
+
+/// The conic arcs of methods.md section 5, (x, y) -> (100 + x, 200 + 0.6 y, 300 + 0.8 y), one set
+/// each: ellipse, parabola, hyperbola (a = 5 mm: arcs of about 10 mm).
+inline std::vector<CurveSet> conic_curve_sets() {
+  const std::array<std::pair<const char*, std::array<Vec3, 5>>, 3> conics{{
+      {"ellipse", {Vec3(105, 200, 300), Vec3(104, 201.08, 301.44), Vec3(103, 201.44, 301.92), Vec3(100, 201.8, 302.4),
+                   Vec3(96, 201.08, 301.44)}},
+      {"parabola", {Vec3(96, 202.4, 303.2), Vec3(98, 200.6, 300.8), Vec3(100, 200, 300), Vec3(102, 200.6, 300.8),
+                    Vec3(106, 205.4, 307.2)}},
+      {"hyperbola", {Vec3(108.5, 196.625, 295.5), Vec3(105, 198.65, 298.2), Vec3(104, 200, 300),
+                     Vec3(105, 201.35, 301.8), Vec3(108.5, 203.375, 304.5)}},
+  }};
+  std::vector<CurveSet> sets;
+  for (const auto& [name, pts] : conics)
+    sets.push_back({name, {std::make_shared<ConicArc>(conic_through_points(pts).curve())}});
+  return sets;
+}
+
+/// The NURBS blocks (as span polynomials) of the programs in ../shared/data/gcode/linuxcnc-nurbs,
+/// one set per program that has any. A program Kontur does not read is left out with a note on
+/// stderr, and so is the whole folder when it is absent.
+inline std::vector<CurveSet> linuxcnc_nurbs_sets() {
+  const auto programs = ngc_files(shared_path("data/gcode/linuxcnc-nurbs"));
+  if (programs.empty()) std::fprintf(stderr, "note: ../shared/data/gcode/linuxcnc-nurbs absent: its rows are skipped\n");
+  std::vector<CurveSet> sets;
+  for (const auto& p : programs) {
+    CurveSet s{p.stem().string(), {}};
+    try {
+      for (auto& c : program_nurbs(p)) s.curves.push_back(std::shared_ptr<const Curve>(std::move(c.spans)));
+    } catch (const InputError& e) {  // a program Kontur does not read: reported, left out
+      std::fprintf(stderr, "note: %s left out: %s\n", p.filename().string().c_str(), e.what());
+      continue;
+    }
+    if (!s.curves.empty()) sets.push_back(std::move(s));
+  }
+  return sets;
+}
+
+/// The curves of all `sets` as one set called `name`.
+inline CurveSet merged_curve_set(const std::string& name, const std::vector<CurveSet>& sets) {
+  CurveSet all{name, {}};
+  for (const CurveSet& s : sets) all.curves.insert(all.curves.end(), s.curves.begin(), s.curves.end());
+  return all;
 }
 
 }  // namespace kontur::bench

@@ -7,6 +7,7 @@
 #include <kontur/geometry/length.hpp>
 #include <kontur/machine_limits.hpp>
 
+#include "support/input_error.hpp"
 #include "support/random_curves.hpp"
 
 #include <Eigen/Geometry>
@@ -160,16 +161,7 @@ TEST(CircleArc, RandomCirclesInSpace) {
 
 // ---- bad input: one test per rule
 
-template <class F>
-void expect_input_error(F&& f, const std::string& rule, const std::string& fragment) {
-  try {
-    f();
-    FAIL() << "no InputError, expected " << rule;
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.rule(), rule) << e.what();
-    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-  }
-}
+using testing::expect_input_error;
 
 TEST(CircleArcInput, CoincidentPoints) {
   expect_input_error([] { (void)circle_through_points({1, 2, 3}, {1, 2, 3}, {4, 5, 7}); }, "points-coincident",

@@ -8,6 +8,7 @@
 #include <kontur/geometry/length.hpp>
 #include <kontur/tolerances.hpp>
 
+#include "support/input_error.hpp"
 #include "support/random_curves.hpp"
 
 #include <Eigen/Geometry>
@@ -428,16 +429,7 @@ TEST(ConicArcMotion, FocalAngleStepsVaryTheSpeed) {
 
 // ---- bad input: one test per rule
 
-template <class F>
-void expect_input_error(F&& f, const std::string& rule, const std::string& fragment) {
-  try {
-    f();
-    FAIL() << "no InputError, expected " << rule;
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.rule(), rule) << e.what();
-    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-  }
-}
+using testing::expect_input_error;
 
 std::array<Vec3, 5> ellipse_points() {
   return {Vec3(105, 200, 300), Vec3(104, 201.08, 301.44), Vec3(103, 201.44, 301.92), Vec3(100, 201.8, 302.4),

@@ -20,59 +20,26 @@ namespace kontur::app {
 namespace {
 
 struct ArcOptions {
-  std::string p1, p2, p3;
+  std::array<std::string, 3> p;
   bool full = false;
   ArcMotionOptions motion;
   std::string report;
 };
 
-constexpr double deg = 180.0 / std::numbers::pi;
-
-std::string angle_text(double rad) { return fmt::format("{} rad ({} deg)", num(rad, 9), num(rad * deg, 10)); }
-
 void run_arc(const ArcOptions& o) {
   validate_motion_options(o.motion);
   const auto limits = parse_limits(o.motion.limits);
-  const Vec3 r1 = parse_point(o.p1, "P1"), r2 = parse_point(o.p2, "P2"), r3 = parse_point(o.p3, "P3");
-  if (limits) {
-    check_inside_limits(*limits, r1, "r1");
-    check_inside_limits(*limits, r2, "r2");
-    check_inside_limits(*limits, r3, "r3");
-  }
+  const auto [r1, r2, r3] = given_points(o.p, limits);
   const CircleThroughPoints c =
       circle_through_points(r1, r2, r3, o.full ? CircleMotion::full_circle : CircleMotion::arc);
   const HelixArc arc = c.curve();
 
   // Everything is computed and checked before anything is printed.
-  const bool angular = o.motion.omega || o.motion.time;
-  std::optional<AngularTiming> timing;
-  std::vector<AngularRow> rows;
-  std::vector<MotionSample> angular_samples;
-  if (angular) {
-    timing = angular_timing(c.sweep_rad, c.length_mm, problem_of(o.motion), problem_value(o.motion), *o.motion.steps);
-    const AngularStepper stepper(arc, *timing, c.end_point());
-    for (int i = 0; i < stepper.samples(); ++i) {
-      AngularRow r;
-      r.sample = stepper.sample(i);
-      r.angle_rad = r.sample.u * c.sweep_rad;
-      r.relative = apply(c.to_relative, r.sample.point);
-      rows.push_back(r);
-      angular_samples.push_back(r.sample);
-    }
-  }
-  const ArcLengthTable table(arc);
-  std::optional<ConstantFeedStepper> feed;
-  std::vector<MotionSample> feed_samples;
-  if (o.motion.feed) {
-    feed.emplace(arc, table, c.end_point(), *o.motion.feed, *o.motion.period, 10'000'000);
-    for (long k = 0; k < feed->samples(); ++k) feed_samples.push_back(feed->sample(k));
-  }
-  if (limits) {
-    check_path_inside(*limits, arc, angular_samples, "step");
-    for (std::size_t k = 0; k < feed_samples.size(); ++k)
-      check_inside_limits(*limits, feed_samples[k].point, fmt::format("period {}", k));
-  }
-  const char* seen_from_z = c.normal.z() > 0.0 ? "counter-clockwise" : c.normal.z() < 0.0 ? "clockwise" : "edge-on";
+  const ArcMotion motion(
+      arc, c.sweep_rad, c.length_mm, c.end_point(), o.motion, [&](double u) { return u * c.sweep_rad; },
+      c.to_relative, limits);
+  const auto& timing = motion.timing;
+  const char* seen_from_z = seen_from_plus_z(c.normal);
 
   if (!o.report.empty()) {
     report::Report rep;
@@ -88,18 +55,13 @@ void run_arc(const ArcOptions& o) {
                    {"length l = R theta", num(c.length_mm) + " mm"},
                    {"direction", fmt::format("counter-clockwise about n ({} seen from +z)", seen_from_z)}};
     if (timing) {
-      rep.summary.push_back({"problem type", o.motion.omega ? "1: omega given, t = theta / omega" : "2: t given, omega = theta / t"});
-      rep.summary.push_back({"omega, t, N", fmt::format("{} rad/s, {} s, {}", num(timing->omega_rad_s), num(timing->time_s), timing->steps)});
+      add_problem_summary(rep, o.motion, *timing, "theta");
       rep.summary.push_back({"speed V = l / t", num(timing->mean_speed_mm_s) + " mm/s"});
       rep.summary.push_back({"dt, dphi", fmt::format("{} s, {}", num(timing->dt_s), angle_text(timing->dphi_rad))});
     }
-    if (feed)
-      rep.summary.push_back({"constant feed", fmt::format("F = {} mm/min, T = {} s: {} mm per period, {} periods, t = {} s",
-                                                          num(feed->feed_mm_min()), num(feed->period_s()),
-                                                          num(feed->step_mm()), feed_samples.size() - 1, num(feed->time_s()))});
-    if (limits) rep.summary.push_back({"machine limits [mm]", point_text(limits->min_mm) + " .. " + point_text(limits->max_mm)});
+    add_feed_and_limits_summary(rep, motion, limits);
     rep.scene_title = "Path: the arc, the given points, the centre and the relative frame (x' towards r1, z' along n)";
-    add_arc_motion(rep, arc, timing, rows, "phi", "relative", feed ? &*feed : nullptr, feed_samples);
+    add_arc_motion(rep, arc, motion, "phi", "relative");
     rep.polylines.push_back(labelled_points("given points r1, r2, r3", {r1, r2, r3}, {"r1", "r2", "r3"}, "#000000", 8.0));
     rep.polylines.push_back(labelled_points("centre r0", {c.centre}, {"r0"}, "#8c564b", 8.0));
     add_frame_axes(rep, "relative frame", c.to_machine, 0.4 * c.radius_mm);
@@ -107,8 +69,7 @@ void run_arc(const ArcOptions& o) {
     if (o.report == "-") return;
   }
   if (o.motion.csv) {
-    if (angular) print_angular_csv(rows);
-    else print_feed_csv(feed_samples);
+    print_motion_csv(motion);
     return;
   }
   if (o.motion.json) {
@@ -128,17 +89,7 @@ void run_arc(const ArcOptions& o) {
     j["direction"] = "counter-clockwise about the normal";
     j["seen_from_plus_z"] = seen_from_z;
     j["length_mm"] = c.length_mm;
-    if (timing) {
-      j["problem_type"] = o.motion.omega ? 1 : 2;
-      j["omega_rad_s"] = timing->omega_rad_s;
-      j["time_s"] = timing->time_s;
-      j["steps"] = timing->steps;
-      j["speed_mm_s"] = timing->mean_speed_mm_s;
-      j["dt_s"] = timing->dt_s;
-      j["dphi_rad"] = timing->dphi_rad;
-      j["table"] = angular_json(rows);
-    }
-    if (feed) j["constant_feed"] = feed_json(*feed, feed_samples);
+    add_motion_json(j, o.motion, motion, {{"speed_mm_s", timing ? timing->mean_speed_mm_s : 0.0}});
     fmt::print("{}\n", j.dump(2));
     return;
   }
@@ -147,7 +98,7 @@ void run_arc(const ArcOptions& o) {
   fmt::print("input [mm]\n  r1 = {}\n  r2 = {}\n  r3 = {}\n", point_text(r1), point_text(r2), point_text(r3));
   fmt::print("motion type {}: {}\n", o.full ? 2 : 1,
              o.full ? "full circle from r1 through r2, r3 back to r1" : "arc from r1 through r2 to r3");
-  if (limits) fmt::print("machine limits [mm]: {} .. {}\n", point_text(limits->min_mm), point_text(limits->max_mm));
+  if (limits) fmt::print("machine limits [mm]: {}\n", limits_text(*limits));
   fmt::print("\ncentre r0 = {} mm, radius R = {} mm\n", point_text(c.centre), num(c.radius_mm));
   fmt::print("plane normal n = {}\n", point_text(c.normal));
   fmt::print("\nT (relative -> machine, homogeneous):\n{}", matrix_text(c.to_machine));
@@ -160,14 +111,10 @@ void run_arc(const ArcOptions& o) {
   fmt::print("direction: counter-clockwise about n ({} seen from +z)\n", seen_from_z);
   fmt::print("arc angle theta = {}, length l = R theta = {} mm\n", angle_text(c.sweep_rad), num(c.length_mm));
   if (timing) {
-    fmt::print("\nproblem type {}: {}\n", o.motion.omega ? 1 : 2,
-               o.motion.omega ? "omega given, t = theta / omega" : "t given, omega = theta / t");
-    fmt::print("omega = {} rad/s\nt = {} s\nN = {}\nV = l / t = {} mm/s\ndt = {} s\ndphi = {}\n",
-               num(timing->omega_rad_s), num(timing->time_s), timing->steps, num(timing->mean_speed_mm_s),
-               num(timing->dt_s), angle_text(timing->dphi_rad));
-    print_angular_table(rows, "phi", "relative");
+    print_timing(o.motion, *timing, "theta", "l", "");
+    print_angular_table(motion.rows, "phi", "relative");
   }
-  if (feed) print_feed_table(*feed, feed_samples);
+  if (motion.feed) print_feed_table(*motion.feed, motion.feed_samples);
 }
 
 }  // namespace
@@ -177,9 +124,9 @@ void register_arc_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "arc", "Circle through three points in space (the seed's program ARC): centre, frames, angles, and the motion "
              "from P1 through P2 to P3 in N equal angle steps, or at a constant feed.");
-  cmd->add_option("P1", opts->p1, "start point x,y,z [mm]")->required();
-  cmd->add_option("P2", opts->p2, "intermediate point x,y,z [mm]")->required();
-  cmd->add_option("P3", opts->p3, "end point x,y,z [mm]")->required();
+  cmd->add_option("P1", opts->p[0], "start point x,y,z [mm]")->required();
+  cmd->add_option("P2", opts->p[1], "intermediate point x,y,z [mm]")->required();
+  cmd->add_option("P3", opts->p[2], "end point x,y,z [mm]")->required();
   cmd->add_flag("--full", opts->full, "motion type 2: the full circle from P1 through P2, P3 back to P1");
   add_motion_options(cmd, opts->motion);
   add_report_option(cmd, opts->report);

@@ -1,6 +1,7 @@
 #include "arc_output.hpp"
 
 #include <kontur/error.hpp>
+#include <kontur/geometry/length.hpp>
 
 #include <fmt/format.h>
 
@@ -243,6 +244,76 @@ nlohmann::ordered_json feed_json(const ConstantFeedStepper& feed, const std::vec
     rows.push_back(e);
   }
   return j;
+}
+
+std::string limits_text(const MachineLimits& limits) {
+  return point_text(limits.min_mm) + " .. " + point_text(limits.max_mm);
+}
+
+std::string angle_text(double rad) { return fmt::format("{} rad ({} deg)", num(rad, 9), num(rad * deg_per_rad, 10)); }
+
+const char* seen_from_plus_z(const Vec3& normal) {
+  return normal.z() > 0.0 ? "counter-clockwise" : normal.z() < 0.0 ? "clockwise" : "edge-on";
+}
+
+ArcMotion::ArcMotion(const Curve& curve, double sweep_rad, double length_mm, const Vec3& end_point,
+                     const ArcMotionOptions& o, const std::function<double(double)>& table_angle,
+                     const Eigen::Matrix4d& to_frame, const std::optional<MachineLimits>& limits)
+    : table(curve) {
+  std::vector<MotionSample> angular_samples;
+  if (o.omega || o.time) {
+    timing = angular_timing(sweep_rad, length_mm, problem_of(o), problem_value(o), *o.steps);
+    const AngularStepper stepper(curve, *timing, end_point);
+    for (int i = 0; i < stepper.samples(); ++i) {
+      AngularRow r;
+      r.sample = stepper.sample(i);
+      r.angle_rad = table_angle(r.sample.u);
+      r.relative = apply(to_frame, r.sample.point);
+      rows.push_back(r);
+      angular_samples.push_back(r.sample);
+    }
+  }
+  if (o.feed) {
+    feed.emplace(curve, table, end_point, *o.feed, *o.period, 10'000'000);
+    for (long k = 0; k < feed->samples(); ++k) feed_samples.push_back(feed->sample(k));
+  }
+  if (limits) {
+    check_path_inside(*limits, curve, angular_samples, "step");
+    for (std::size_t k = 0; k < feed_samples.size(); ++k)
+      check_inside_limits(*limits, feed_samples[k].point, fmt::format("period {}", k));
+  }
+}
+
+std::string problem_text(const ArcMotionOptions& o, const char* angle) {
+  return o.omega ? fmt::format("omega given, t = {} / omega", angle) : fmt::format("t given, omega = {} / t", angle);
+}
+
+void print_timing(const ArcMotionOptions& o, const AngularTiming& timing, const char* angle, const char* length,
+                  const char* mean_note) {
+  fmt::print("\nproblem type {}: {}\n", o.omega ? 1 : 2, problem_text(o, angle));
+  fmt::print("omega = {} rad/s\nt = {} s\nN = {}\nV = {} / t = {} mm/s{}\ndt = {} s\ndphi = {}\n",
+             num(timing.omega_rad_s), num(timing.time_s), timing.steps, length, num(timing.mean_speed_mm_s), mean_note,
+             num(timing.dt_s), angle_text(timing.dphi_rad));
+}
+
+void print_motion_csv(const ArcMotion& m) {
+  if (m.timing) print_angular_csv(m.rows);
+  else print_feed_csv(m.feed_samples);
+}
+
+void add_motion_json(nlohmann::ordered_json& j, const ArcMotionOptions& o, const ArcMotion& m,
+                     const nlohmann::ordered_json& speed_fields) {
+  if (m.timing) {
+    j["problem_type"] = o.omega ? 1 : 2;
+    j["omega_rad_s"] = m.timing->omega_rad_s;
+    j["time_s"] = m.timing->time_s;
+    j["steps"] = m.timing->steps;
+    for (auto f = speed_fields.begin(); f != speed_fields.end(); ++f) j[f.key()] = f.value();
+    j["dt_s"] = m.timing->dt_s;
+    j["dphi_rad"] = m.timing->dphi_rad;
+    j["table"] = angular_json(m.rows);
+  }
+  if (m.feed) j["constant_feed"] = feed_json(*m.feed, m.feed_samples);
 }
 
 }  // namespace kontur::app

@@ -26,55 +26,26 @@ struct ConicCommandOptions {
   std::string report;
 };
 
-constexpr double deg = 180.0 / std::numbers::pi;
-
-std::string angle_text(double rad) { return fmt::format("{} rad ({} deg)", num(rad, 9), num(rad * deg, 10)); }
-
 void run_conic(const ConicCommandOptions& o) {
   validate_motion_options(o.motion);
   const auto limits = parse_limits(o.motion.limits);
-  std::array<Vec3, 5> r;
-  for (std::size_t j = 0; j < 5; ++j) r[j] = parse_point(o.p[j], fmt::format("P{}", j + 1));
-  if (limits)
-    for (std::size_t j = 0; j < 5; ++j) check_inside_limits(*limits, r[j], fmt::format("r{}", j + 1));
+  const std::array<Vec3, 5> r = given_points(o.p, limits);
   ConicOptions options;
   options.plane_tolerance_mm = o.plane_tolerance_mm;
   const ConicThroughPoints k = conic_through_points(r, options);
   const ConicArc arc = k.curve();
   const LengthResult len = gauss_kronrod_length(arc);
 
-  const bool angular = o.motion.omega || o.motion.time;
-  std::optional<AngularTiming> timing;
+  // Everything is computed and checked before anything is printed.
+  const ArcMotion motion(
+      arc, k.theta15_rad, len.length_mm, r[4], o.motion,
+      [&](double u) { return k.focal_angles_rad[0] + u; },  // focal angle theta01 + phi_i
+      k.machine_to_focal, limits);
+  const auto& timing = motion.timing;
   std::optional<SpeedVariation> speeds;
-  std::vector<AngularRow> rows;
-  std::vector<MotionSample> angular_samples;
-  if (angular) {
-    timing = angular_timing(k.theta15_rad, len.length_mm, problem_of(o.motion), problem_value(o.motion), *o.motion.steps);
-    speeds = angular_speed_variation(arc, *timing);
-    const AngularStepper stepper(arc, *timing, r[4]);
-    for (int i = 0; i < stepper.samples(); ++i) {
-      AngularRow row;
-      row.sample = stepper.sample(i);
-      row.angle_rad = k.focal_angles_rad[0] + row.sample.u;  // focal angle theta01 + phi_i
-      row.relative = apply(k.machine_to_focal, row.sample.point);
-      rows.push_back(row);
-      angular_samples.push_back(row.sample);
-    }
-  }
-  const ArcLengthTable table(arc);
-  std::optional<ConstantFeedStepper> feed;
-  std::vector<MotionSample> feed_samples;
-  if (o.motion.feed) {
-    feed.emplace(arc, table, r[4], *o.motion.feed, *o.motion.period, 10'000'000);
-    for (long i = 0; i < feed->samples(); ++i) feed_samples.push_back(feed->sample(i));
-  }
-  if (limits) {
-    check_path_inside(*limits, arc, angular_samples, "step");
-    for (std::size_t i = 0; i < feed_samples.size(); ++i)
-      check_inside_limits(*limits, feed_samples[i].point, fmt::format("period {}", i));
-  }
+  if (timing) speeds = angular_speed_variation(arc, *timing);
   const Vec3 normal = k.focal_to_machine.block<3, 1>(0, 2);
-  const char* seen_from_z = normal.z() > 0.0 ? "counter-clockwise" : normal.z() < 0.0 ? "clockwise" : "edge-on";
+  const char* seen_from_z = seen_from_plus_z(normal);
   const bool has_axes = k.type == ConicType::ellipse || k.type == ConicType::hyperbola || k.type == ConicType::circle;
 
   if (!o.report.empty()) {
@@ -100,18 +71,13 @@ void run_conic(const ConicCommandOptions& o) {
     rep.summary.push_back({"direction", fmt::format("counter-clockwise about the normal ({} seen from +z)", seen_from_z)});
     rep.summary.push_back({"plane distance of r4, r5", fmt::format("{} mm (tolerance {} mm)", num(k.plane_distance_mm, 3), num(k.plane_tolerance_mm, 3))});
     if (timing) {
-      rep.summary.push_back({"problem type", o.motion.omega ? "1: omega given, t = theta15 / omega" : "2: t given, omega = theta15 / t"});
-      rep.summary.push_back({"omega, t, N", fmt::format("{} rad/s, {} s, {}", num(timing->omega_rad_s), num(timing->time_s), timing->steps)});
+      add_problem_summary(rep, o.motion, *timing, "theta15");
       rep.summary.push_back({"path speed", fmt::format("mean {} mm/s, from {} to {} mm/s", num(timing->mean_speed_mm_s),
                                                         num(speeds->min_mm_s, 7), num(speeds->max_mm_s, 7))});
     }
-    if (feed)
-      rep.summary.push_back({"constant feed", fmt::format("F = {} mm/min, T = {} s: {} mm per period, {} periods, t = {} s",
-                                                          num(feed->feed_mm_min()), num(feed->period_s()),
-                                                          num(feed->step_mm()), feed_samples.size() - 1, num(feed->time_s()))});
-    if (limits) rep.summary.push_back({"machine limits [mm]", point_text(limits->min_mm) + " .. " + point_text(limits->max_mm)});
+    add_feed_and_limits_summary(rep, motion, limits);
     rep.scene_title = "Path: the conic arc, the given points, the foci (and centre) and the focal frame (origin the focus, z' the normal)";
-    add_arc_motion(rep, arc, timing, rows, "theta", "focal", feed ? &*feed : nullptr, feed_samples);
+    add_arc_motion(rep, arc, motion, "theta", "focal");
     rep.polylines.push_back(labelled_points("given points r1..r5", {r.begin(), r.end()}, {"r1", "r2", "r3", "r4", "r5"}, "#000000", 8.0));
     if (k.type == ConicType::ellipse || k.type == ConicType::hyperbola)
       rep.polylines.push_back(labelled_points("foci", {k.foci[0], k.foci[1]}, {"F1", "F2"}, "#8c564b", 8.0));
@@ -124,8 +90,7 @@ void run_conic(const ConicCommandOptions& o) {
     if (o.report == "-") return;
   }
   if (o.motion.csv) {
-    if (angular) print_angular_csv(rows);
-    else print_feed_csv(feed_samples);
+    print_motion_csv(motion);
     return;
   }
   if (o.motion.json) {
@@ -165,19 +130,12 @@ void run_conic(const ConicCommandOptions& o) {
     j["seen_from_plus_z"] = seen_from_z;
     j["length_mm"] = len.length_mm;
     j["length_error_estimate_mm"] = len.error_estimate_mm;
-    if (timing) {
-      j["problem_type"] = o.motion.omega ? 1 : 2;
-      j["omega_rad_s"] = timing->omega_rad_s;
-      j["time_s"] = timing->time_s;
-      j["steps"] = timing->steps;
-      j["mean_speed_mm_s"] = timing->mean_speed_mm_s;
-      j["min_speed_mm_s"] = speeds->min_mm_s;
-      j["max_speed_mm_s"] = speeds->max_mm_s;
-      j["dt_s"] = timing->dt_s;
-      j["dphi_rad"] = timing->dphi_rad;
-      j["table"] = angular_json(rows);
-    }
-    if (feed) j["constant_feed"] = feed_json(*feed, feed_samples);
+    nlohmann::ordered_json speed_fields;
+    if (timing)
+      speed_fields = {{"mean_speed_mm_s", timing->mean_speed_mm_s},
+                      {"min_speed_mm_s", speeds->min_mm_s},
+                      {"max_speed_mm_s", speeds->max_mm_s}};
+    add_motion_json(j, o.motion, motion, speed_fields);
     fmt::print("{}\n", j.dump(2));
     return;
   }
@@ -185,7 +143,7 @@ void run_conic(const ConicCommandOptions& o) {
   fmt::print("kontur conic: arc of a conic through five points (the seed's program SOCADI)\n");
   fmt::print("input [mm]\n");
   for (std::size_t j = 0; j < 5; ++j) fmt::print("  r{} = {}\n", j + 1, point_text(r[j]));
-  if (limits) fmt::print("machine limits [mm]: {} .. {}\n", point_text(limits->min_mm), point_text(limits->max_mm));
+  if (limits) fmt::print("machine limits [mm]: {}\n", limits_text(*limits));
   fmt::print("\nrelative frame: origin r1, x along r2 - r1, lambda = {}; r4, r5 within {} mm of the plane "
              "(tolerance {} mm)\n",
              num(k.lambda), num(k.plane_distance_mm, 3), num(k.plane_tolerance_mm, 3));
@@ -221,7 +179,7 @@ void run_conic(const ConicCommandOptions& o) {
     const double rho = q.head<2>().norm();
     fmt::print("  r{} = {}  |{}|  cos {}  theta0{} = {}  theta1{} = {} deg\n", j + 1, point_fixed(q), num(rho),
                fixed(q.x() / rho, 10), j + 1, angle_text(k.focal_angles_rad[j]), j + 1,
-               num(k.swept_angles_rad[j] * deg, 10));
+               num(k.swept_angles_rad[j] * deg_per_rad, 10));
   }
   fmt::print("direction: counter-clockwise about the normal ({} seen from +z); points in order along one arc\n",
              seen_from_z);
@@ -229,17 +187,13 @@ void run_conic(const ConicCommandOptions& o) {
   fmt::print("arc length l15 = {} mm (Gauss-Kronrod, error estimate {:.2g} mm)\n", num(len.length_mm, 13),
              len.error_estimate_mm);
   if (timing) {
-    fmt::print("\nproblem type {}: {}\n", o.motion.omega ? 1 : 2,
-               o.motion.omega ? "omega given, t = theta15 / omega" : "t given, omega = theta15 / t");
-    fmt::print("omega = {} rad/s\nt = {} s\nN = {}\nV = l15 / t = {} mm/s (mean)\ndt = {} s\ndphi = {}\n",
-               num(timing->omega_rad_s), num(timing->time_s), timing->steps, num(timing->mean_speed_mm_s),
-               num(timing->dt_s), angle_text(timing->dphi_rad));
+    print_timing(o.motion, *timing, "theta15", "l15", " (mean)");
     fmt::print("speed along the path varies from {} to {} mm/s ({} % of the mean): equal focal-angle steps are not "
                "equal path steps\n",
                num(speeds->min_mm_s, 7), num(speeds->max_mm_s, 7), num(100.0 * speeds->relative_variation(), 4));
-    print_angular_table(rows, "theta", "focal");
+    print_angular_table(motion.rows, "theta", "focal");
   }
-  if (feed) print_feed_table(*feed, feed_samples);
+  if (motion.feed) print_feed_table(*motion.feed, motion.feed_samples);
 }
 
 }  // namespace

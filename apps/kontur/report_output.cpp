@@ -215,4 +215,24 @@ void add_arc_motion(report::Report& r, const Curve& curve, const std::optional<A
   }
 }
 
+void add_arc_motion(report::Report& r, const Curve& curve, const ArcMotion& motion, const char* angle_name,
+                    const char* frame_name) {
+  add_arc_motion(r, curve, motion.timing, motion.rows, angle_name, frame_name, motion.feed ? &*motion.feed : nullptr,
+                 motion.feed_samples);
+}
+
+void add_problem_summary(report::Report& r, const ArcMotionOptions& o, const AngularTiming& timing, const char* angle) {
+  r.summary.push_back({"problem type", fmt::format("{}: {}", o.omega ? 1 : 2, problem_text(o, angle))});
+  r.summary.push_back({"omega, t, N", fmt::format("{} rad/s, {} s, {}", num(timing.omega_rad_s), num(timing.time_s), timing.steps)});
+}
+
+void add_feed_and_limits_summary(report::Report& r, const ArcMotion& motion, const std::optional<MachineLimits>& limits) {
+  if (const auto& feed = motion.feed)
+    r.summary.push_back({"constant feed", fmt::format("F = {} mm/min, T = {} s: {} mm per period, {} periods, t = {} s",
+                                                        num(feed->feed_mm_min()), num(feed->period_s()),
+                                                        num(feed->step_mm()), motion.feed_samples.size() - 1,
+                                                        num(feed->time_s()))});
+  if (limits) r.summary.push_back({"machine limits [mm]", limits_text(*limits)});
+}
+
 }  // namespace kontur::app

@@ -37,4 +37,15 @@ void add_arc_motion(report::Report& r, const Curve& curve, const std::optional<A
                     const std::vector<AngularRow>& rows, const char* angle_name, const char* frame_name,
                     const ConstantFeedStepper* feed, const std::vector<MotionSample>& feed_samples);
 
+/// add_arc_motion for the motion of `kontur arc` or `kontur conic` (which must outlive the report).
+void add_arc_motion(report::Report& r, const Curve& curve, const ArcMotion& motion, const char* angle_name,
+                    const char* frame_name);
+
+/// The summary rows of the angular mode's problem: "problem type" (problem_text with `angle`) and
+/// "omega, t, N".
+void add_problem_summary(report::Report& r, const ArcMotionOptions& o, const AngularTiming& timing, const char* angle);
+
+/// The summary rows of the constant feed and of the machine limits, where given.
+void add_feed_and_limits_summary(report::Report& r, const ArcMotion& motion, const std::optional<MachineLimits>& limits);
+
 }  // namespace kontur::app

@@ -20,6 +20,7 @@
 #include <kontur/machine_limits.hpp>
 #include <kontur/geometry/nurbs.hpp>
 #include <kontur/pipeline.hpp>
+#include <kontur/plan/constraints.hpp>
 #include <kontur/plan/lookahead.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/plan/scurve.hpp>

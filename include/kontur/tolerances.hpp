@@ -53,6 +53,12 @@ inline constexpr double inverse_step_second_order_stop = 1e-5;
 inline constexpr double forward_difference_drift_relative = 1e-9;
 
 
+// ---- constraints of a path on a machine (plan/constraints.hpp), for both planners
+/// A unit tangent component above this moves the path along that axis: on a machine without the
+/// axis the path cannot be run (speed cap zero; the time-optimal reference refuses it). A smaller
+/// component is rounding of a path that does not move the axis (over a 1000 mm move, 1e-9 mm).
+inline constexpr double missing_axis_tangent = 1e-12;
+
 // ---- time-optimal reference (plan/time_optimal.hpp)
 /// Two unit tangents that differ by more than this (Euclidean norm) make a corner: a tangent
 /// discontinuity that an acceleration-limited motion can only pass at rest (or, by the servo-period
@@ -159,6 +165,10 @@ inline constexpr double plan_corner_jerk_share = 0.05;
 inline constexpr double plan_small_corner = 0.05;
 /// Tangents or curvature vectors that agree to this (per axis; [1] and [1/mm]) make a smooth junction.
 inline constexpr double plan_junction_smooth = 1e-9;
+/// Share of an axis's acceleration the velocity jump of a corner (v |t2 - t1|_i / T, as setpoints a
+/// period apart see it) may take in the online planner's junction limit: what the centripetal part
+/// leaves at its largest share (plan_centripetal_shares).
+inline constexpr double plan_corner_acceleration_share = 0.1;
 /// Fractions of an axis's acceleration the centripetal part may take on a curve; the planner takes
 /// the one that gives the shortest time for the piece (the rest is left for the path acceleration).
 inline constexpr double plan_centripetal_shares[] = {0.5, 0.7, 0.9};

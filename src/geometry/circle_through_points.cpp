@@ -1,5 +1,6 @@
 // Circle through three points (methods.md section 4; seed 001 section 2, program ARC).
 #include "arc_checks.hpp"
+#include "frame_matrices.hpp"
 
 #include <kontur/geometry/circle_through_points.hpp>
 #include <kontur/error.hpp>
@@ -56,17 +57,10 @@ CircleThroughPoints circle_through_points(const Vec3& r1, const Vec3& r2, const 
   c.frame.e1 = x;
   c.frame.normal = c.normal;
   c.frame.e2 = c.normal.cross(x);
-  Eigen::Matrix3d R;
-  R.col(0) = c.frame.e1;
-  R.col(1) = c.frame.e2;
-  R.col(2) = c.frame.normal;
-  c.to_machine.setIdentity();
-  c.to_machine.topLeftCorner<3, 3>() = R;
-  c.to_machine.topRightCorner<3, 1>() = c.centre;
-  c.to_relative.setIdentity();
-  c.to_relative.topLeftCorner<3, 3>() = R.transpose();
-  c.to_relative.topRightCorner<3, 1>() = -R.transpose() * c.centre;
-  for (std::size_t j = 0; j < 3; ++j) c.relative_points[j] = R.transpose() * (c.points[j] - c.centre);
+  const detail::FrameMatrices relative = detail::frame_matrices(c.frame.e1, c.frame.e2, c.frame.normal, c.centre);
+  c.to_machine = relative.to_machine;
+  c.to_relative = relative.to_frame;
+  for (std::size_t j = 0; j < 3; ++j) c.relative_points[j] = relative.local(c.points[j]);
 
   // Seed (2.52)-(2.55): 80 cases of arccos / arctan; with n oriented by the points the motion is
   // counter-clockwise about Z and one atan2 mapped to (0, 2 pi] covers them all.

@@ -1,5 +1,6 @@
 // Conic through five points (methods.md section 5; seed 001 section 3, program SOCADI).
 #include "arc_checks.hpp"
+#include "frame_matrices.hpp"
 
 #include <kontur/geometry/conic_through_points.hpp>
 #include <kontur/error.hpp>
@@ -159,17 +160,11 @@ ConicThroughPoints conic_through_points(const std::array<Vec3, 5>& r, const Coni
   Vec3 e2 = b + k.lambda * a;
   e2 = (e2 - e2.dot(e1) * e1).normalized();  // one more Gram-Schmidt pass, for the last bits
   const Vec3 e3 = e1.cross(e2);              // = (r2 - r1) x (r3 - r1) / |...|
-  Eigen::Matrix3d R;
-  R.col(0) = e1;
-  R.col(1) = e2;
-  R.col(2) = e3;
-  k.relative_to_machine.setIdentity();
-  k.relative_to_machine.topLeftCorner<3, 3>() = R;
-  k.relative_to_machine.topRightCorner<3, 1>() = r[0];
-  k.machine_to_relative.setIdentity();
-  k.machine_to_relative.topLeftCorner<3, 3>() = R.transpose();
-  k.machine_to_relative.topRightCorner<3, 1>() = -R.transpose() * r[0];
-  for (std::size_t j = 0; j < 5; ++j) k.relative_points[j] = R.transpose() * (r[j] - r[0]);
+  const detail::FrameMatrices relative = detail::frame_matrices(e1, e2, e3, r[0]);
+  const Eigen::Matrix3d& R = relative.rotation;
+  k.relative_to_machine = relative.to_machine;
+  k.machine_to_relative = relative.to_frame;
+  for (std::size_t j = 0; j < 5; ++j) k.relative_points[j] = relative.local(r[j]);
   k.relative_points[0] = Vec3::Zero();
 
   // ---- Coplanarity: the seed assumes it; Kontur checks the distance of r4 and r5 to the plane.
@@ -395,17 +390,10 @@ ConicThroughPoints conic_through_points(const std::array<Vec3, 5>& r, const Coni
 
   // ---- Focal frame: origin at the focus, X' along xi (away from the near directrix), Z' the normal.
   const Vec3 xf = xi3.normalized(), zf = e3, yf = zf.cross(xf);
-  Eigen::Matrix3d Rf;
-  Rf.col(0) = xf;
-  Rf.col(1) = yf;
-  Rf.col(2) = zf;
-  k.focal_to_machine.setIdentity();
-  k.focal_to_machine.topLeftCorner<3, 3>() = Rf;
-  k.focal_to_machine.topRightCorner<3, 1>() = k.focus;
-  k.machine_to_focal.setIdentity();
-  k.machine_to_focal.topLeftCorner<3, 3>() = Rf.transpose();
-  k.machine_to_focal.topRightCorner<3, 1>() = -Rf.transpose() * k.focus;
-  for (std::size_t j = 0; j < 5; ++j) k.focal_points[j] = Rf.transpose() * (r[j] - k.focus);
+  const detail::FrameMatrices focal = detail::frame_matrices(xf, yf, zf, k.focus);
+  k.focal_to_machine = focal.to_machine;
+  k.machine_to_focal = focal.to_frame;
+  for (std::size_t j = 0; j < 5; ++j) k.focal_points[j] = focal.local(r[j]);
 
   // ---- Hyperbola: the branch, decided once from r1's side of the centre along the axis; every
   // other point must be on the same side.

@@ -8,6 +8,7 @@
 #include <kontur/error.hpp>
 #include <kontur/interpolate/curve_interpolator.hpp>
 #include <kontur/geometry/length.hpp>
+#include <kontur/plan/constraints.hpp>
 #include <kontur/plan/time_optimal.hpp>
 #include <kontur/tolerances.hpp>
 
@@ -17,18 +18,14 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 namespace kontur::plan {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// One axis constraint at a grid point, |t u + k x| <= a, with the sign chosen so that t >= 0.
-struct Row {
-  double t = 0.0;  // tangent component [1]
-  double k = 0.0;  // curvature vector component [1/mm]
-  double a = 0.0;  // acceleration limit [mm/s^2]
-};
+using Row = AccelerationRow;  // |t u + k x| <= a at a grid point, t >= 0
 
 // The constraints of one grid point.
 struct Point {
@@ -40,63 +37,22 @@ struct Point {
   int row_count = 0;
 };
 
-// Linear axes of the machine by coordinate index (nullptr where it has none).
-std::array<const AxisLimits*, 3> linear_axes(const Machine& machine) {
-  std::array<const AxisLimits*, 3> axes{};
-  for (const AxisLimits& a : machine.axes) {
-    const int i = linear_axis_index(a.name);
-    if (i >= 0) axes[static_cast<std::size_t>(i)] = &a;
-  }
-  return axes;
-}
-
-// Unit tangent and curvature vector kappa n = d^2C/ds^2 [1/mm] from derivatives by u.
-void tangent_and_curvature(const Derivatives& d, Vec3& t, Vec3& k) {
-  const double v2 = d[1].squaredNorm();
-  if (!(v2 > 0.0)) {
-    t = Vec3::Zero();
-    k = Vec3::Zero();
-    return;
-  }
-  t = d[1] / std::sqrt(v2);
-  k = (d[2] - d[2].dot(t) * t) / v2;
-}
-
 // Largest speed [mm/s] from the velocity limits at one side of a point: feed, max feed, axis
-// velocities along the tangent, chord error.
-double speed_cap(const Vec3& t, const Vec3& k, double feed, const Machine& machine,
-                 const std::array<const AxisLimits*, 3>& axes, std::size_t move) {
-  double v = std::min(feed, machine.max_feed_mm_s);
-  for (std::size_t i = 0; i < 3; ++i) {
-    const double ti = std::abs(t[static_cast<Eigen::Index>(i)]);
-    if (axes[i] == nullptr) {
-      if (ti > tolerances::time_optimal_tangent_zero)
-        throw InputError("missing-axis", fmt::format("time-optimal reference: move {} runs along axis {}, which the "
-                                                     "machine '{}' does not have",
-                                                     move + 1, "XYZ"[i], machine.name));
-      continue;
-    }
-    if (ti > 0.0) v = std::min(v, axes[i]->max_velocity / ti);
-  }
-  const double kappa = k.norm();
-  if (kappa > 0.0) v = std::min(v, chord_limited_feed(1.0 / kappa, machine.chord_tolerance_mm, machine.servo_period_s));
-  return v;
+// velocities along the tangent, chord error. A point that moves an axis the machine lacks has a
+// cap of zero (constraints.hpp): the path cannot be run, and is refused.
+double speed_cap(const Vec3& t, const Vec3& k, double feed, const Machine& machine, const LinearAxes& axes,
+                 std::size_t move) {
+  if (const int i = missing_axis_moved(t, axes); i >= 0)
+    throw InputError("missing-axis", fmt::format("time-optimal reference: move {} runs along axis {}, which the "
+                                                 "machine '{}' does not have",
+                                                 move + 1, "XYZ"[i], machine.name));
+  return std::min(velocity_cap(t, feed, machine, axes), chord_cap(k.norm(), machine));
 }
 
 // The axis constraints |t_i u + k_i x| <= A_i of a point with unit tangent t and curvature
 // vector k [1/mm], signed so that t_i >= 0.
-void set_rows(Point& p, const Vec3& t, const Vec3& k, const std::array<const AxisLimits*, 3>& axes) {
-  p.row_count = 0;
-  for (std::size_t i = 0; i < 3; ++i) {
-    if (axes[i] == nullptr) continue;
-    const auto e = static_cast<Eigen::Index>(i);
-    Row r{std::abs(t[e]) > tolerances::time_optimal_tangent_zero ? t[e] : 0.0, k[e], axes[i]->max_acceleration};
-    if (r.t < 0.0) {
-      r.t = -r.t;
-      r.k = -r.k;
-    }
-    p.rows[static_cast<std::size_t>(p.row_count++)] = r;
-  }
+void set_rows(Point& p, const Vec3& t, const Vec3& k, const LinearAxes& axes) {
+  p.row_count = acceleration_rows(t, k, axes, p.rows);
 }
 
 // Lower and upper end of the admissible u at x: max / min over rows of (-+a - k x) / t.
@@ -163,8 +119,8 @@ MoveGrid move_grid(const Curve& c, const ArcLengthTable& table, double step, int
   const std::vector<double> bps = c.breakpoints();
   for (std::size_t b = 1; b + 1 < bps.size(); ++b) {
     Vec3 tl, kl, tr, kr;
-    tangent_and_curvature(c.derivatives_left(bps[b], 2), tl, kl);
-    tangent_and_curvature(c.derivatives(bps[b], 2), tr, kr);
+    std::tie(tl, kl) = tangent_and_curvature(c.derivatives_left(bps[b], 2));
+    std::tie(tr, kr) = tangent_and_curvature(c.derivatives(bps[b], 2));
     const char corner = (tl - tr).norm() > tolerances::time_optimal_corner_tangent ? 1 : 0;
     nodes.push_back({table.s_of_u(bps[b]), bps[b], corner});
   }
@@ -237,15 +193,9 @@ MoveGrid move_grid(const Curve& c, const ArcLengthTable& table, double step, int
 }
 
 // Largest speed [mm/s] through a tangent discontinuity from tangent tl to tr.
-double corner_speed(const Vec3& tl, const Vec3& tr, const Machine& machine,
-                    const std::array<const AxisLimits*, 3>& axes, CornerRule rule) {
+double corner_speed(const Vec3& tl, const Vec3& tr, const Machine& machine, const LinearAxes& axes, CornerRule rule) {
   if (rule == CornerRule::stop) return 0.0;
-  double v = kInf;
-  for (std::size_t i = 0; i < 3; ++i) {
-    const double jump = std::abs(tr[static_cast<Eigen::Index>(i)] - tl[static_cast<Eigen::Index>(i)]);
-    if (axes[i] != nullptr && jump > 0.0) v = std::min(v, axes[i]->max_acceleration * machine.servo_period_s / jump);
-  }
-  return v;
+  return corner_acceleration_cap(tr - tl, machine, axes, 1.0, 0.0);
 }
 
 // Time [s] over one grid segment of length d [mm] from speed v0 to v1 [mm/s]: the fastest motion
@@ -342,7 +292,7 @@ TimeOptimalProfile time_optimal_profile(std::span<const TimeOptimalMove> moves, 
       p.move = used[n].index;
       p.s_move = g.s[j];
       Vec3 t, k;
-      tangent_and_curvature(c.derivatives(g.u[j], 2), t, k);
+      std::tie(t, k) = tangent_and_curvature(c.derivatives(g.u[j], 2));
       double v = speed_cap(t, k, mv.feed_mm_s, machine, axes, p.move);
       Vec3 tl = t, kl = k;
       bool corner = false;
@@ -353,7 +303,7 @@ TimeOptimalProfile time_optimal_profile(std::span<const TimeOptimalMove> moves, 
         corner = (tl - t).norm() > tolerances::time_optimal_corner_tangent;
         if (prev_exact) v = 0.0;
       } else if (g.corner[j]) {
-        tangent_and_curvature(c.derivatives_left(g.u[j], 2), tl, kl);
+        std::tie(tl, kl) = tangent_and_curvature(c.derivatives_left(g.u[j], 2));
         v = std::min(v, speed_cap(tl, kl, mv.feed_mm_s, machine, axes, p.move));
         corner = true;
       }
@@ -375,7 +325,7 @@ TimeOptimalProfile time_optimal_profile(std::span<const TimeOptimalMove> moves, 
     }
     // The end of the move: its left tangent and speed cap go to the junction with the next move.
     Vec3 te, ke;
-    tangent_and_curvature(c.derivatives_left(c.u_max(), 2), te, ke);
+    std::tie(te, ke) = tangent_and_curvature(c.derivatives_left(c.u_max(), 2));
     end_cap = speed_cap(te, ke, mv.feed_mm_s, machine, axes, used[n].index);
     t_prev = te;
     k_prev = ke;

@@ -1,11 +1,9 @@
 #pragma once
 // Look-ahead across moves: the speed at every junction, so that braking starts early enough
-// (the reason seed 000 computes the length of a spline), and the path limits of a move from its
-// geometry and the machine's axis limits.
-#include <kontur/geometry/curve.hpp>
-#include <kontur/machine.hpp>
+// (the reason seed 000 computes the length of a spline). The path limits of a move from its
+// geometry and the machine's axis limits are in constraints.hpp (included here for callers).
+#include <kontur/plan/constraints.hpp>
 #include <kontur/plan/scurve.hpp>
-#include <kontur/tolerances.hpp>
 
 #include <algorithm>
 #include <deque>
@@ -104,80 +102,5 @@ private:
   double v_start_ = 0.0;
   bool finished_ = false;
 };
-
-/// Per-axis bounds of the geometry of a stretch of path, as the limits need them: maxima over
-/// samples (plan_samples_per_span per span), raised by tolerances::plan_sample_margin.
-struct PathGeometry {
-  Vec3 tangent = Vec3::Zero();         ///< max |t_i| of the unit tangent
-  Vec3 curvature = Vec3::Zero();       ///< max |K_i| of the curvature vector K = kappa n [1/mm]
-  Vec3 curvature_rate = Vec3::Zero();  ///< max |dK_i/ds| along the path [1/mm^2]
-  double max_kappa = 0.0;              ///< largest curvature [1/mm] (for the chord error)
-  /// The bounds of both stretches.
-  void merge(const PathGeometry& other) noexcept;
-};
-
-/// Geometry bounds of a curve between parameters u0 < u1 (inside one span, or sampled per span).
-[[nodiscard]] PathGeometry path_geometry(const Curve& curve, double u0, double u1,
-                                         int samples = tolerances::plan_samples_per_span);
-
-/// Curvature vector K = kappa n = dt/ds [1/mm] and its derivative along the path dK/ds [1/mm^2]
-/// from a point's derivatives up to the third (zero where C' = 0).
-[[nodiscard]] std::pair<Vec3, Vec3> curvature_vector_and_rate(const Derivatives& d) noexcept;
-
-/// The speed cap [mm/s] of a stretch: the smallest of the feed, the machine's max feed, every
-/// axis's velocity along the tangent, the centripetal acceleration K_i v^2 <= share A_i, the
-/// curvature change K'_i v^3 <= plan_curvature_rate_jerk_share J_i and the chord-error limit
-/// v <= (2/T) sqrt(R^2 - (R - delta)^2); zero if the stretch moves an axis the machine lacks.
-[[nodiscard]] double speed_cap(const PathGeometry& g, double feed_mm_s, const Machine& machine,
-                               double centripetal_share) noexcept;
-
-/// The path limits of a stretch of length `length_mm`: its speed cap (speed_cap) and the largest
-/// path acceleration and jerk that keep every axis within its limits at any speed up to the cap:
-/// |t_i| a + K_i v^2 <= A_i, and |t_i| j + 3 K_i v a + K'_i v^3 <= (1 - junction_share) J_i, the
-/// cross term taking at most plan_cross_jerk_share. `junction_jerk_share` is the share of the
-/// junctions at the stretch's ends (see junction). Of the centripetal shares in
-/// tolerances::plan_centripetal_shares, the one with the shortest estimated time is taken.
-[[nodiscard]] PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s,
-                                     const Machine& machine, double junction_jerk_share) noexcept;
-
-/// The path limits of a stretch at a given speed cap [mm/s] (as path_limits, without choosing the
-/// centripetal share): raising the junction share lowers only the jerk.
-[[nodiscard]] PathLimits path_limits_at(const PathGeometry& g, double cap_mm_s, const Machine& machine,
-                                        double junction_jerk_share) noexcept;
-
-/// Geometry of a move as the planner sees it: the curve, its length and the largest speed the
-/// program asks for.
-struct MoveGeometry {
-  const Curve* curve = nullptr;  ///< the path
-  double length_mm = 0.0;        ///< its length [mm]
-  double feed_mm_s = 0.0;        ///< programmed feed (or rapid speed) [mm/s]
-};
-
-/// The path limits of a whole move (path_limits over the geometry of all its spans, `samples`
-/// per span, with smooth junctions at its ends).
-[[nodiscard]] PathLimits move_limits(const MoveGeometry& move, const Machine& machine,
-                                     int samples = tolerances::plan_samples_per_span);
-
-/// What a junction of two stretches allows.
-struct Junction {
-  double velocity = 0.0;     ///< largest speed through it [mm/s] (infinity if smooth)
-  double jerk_share = 0.0;   ///< share of each axis's jerk it uses (0 if smooth)
-};
-
-/// The junction of two stretches, from the end of the first (`end_in`: point and derivatives up to
-/// the second, as the limit from the left) and the start of the second. Setpoints a servo period
-/// T apart see a change of direction as a velocity jump, and a change of curvature as an
-/// acceleration jump, within one period; each axis's jerk (as a finite difference of the
-/// setpoints sees it) stays within `jerk_share` of its limit when
-/// v |t1 - t2|_i / T^2 + v^2 |K1 - K2|_i / T <= jerk_share J_i, and the acceleration spike of a
-/// corner within 1 - max centripetal share of its limit: v |t1 - t2|_i / T <= 0.1 A_i. Where
-/// tangent and curvature agree to plan_junction_smooth there is no limit.
-[[nodiscard]] double junction_limit(const Derivatives& end_in, const Derivatives& start_out,
-                                    const Machine& machine, double jerk_share = 1.0) noexcept;
-
-/// The junction with the share chosen by its kind: none if smooth, plan_corner_jerk_share for a
-/// corner, plan_smooth_junction_jerk_share for a small corner or a curvature jump only.
-[[nodiscard]] Junction junction(const Derivatives& end_in, const Derivatives& start_out,
-                                const Machine& machine) noexcept;
 
 }  // namespace kontur::plan

@@ -69,7 +69,8 @@ struct TimeOptimalProfile {
 /// curvature vector, derivatives by arc length), s_dot <= min(feed, max feed), the chord limit
 /// s_dot <= (2/T) sqrt(R^2 - (R - delta)^2), rest at exact stops and corners (CornerRule).
 /// Moves of zero length are skipped. Rotary axes do not carry the path. Throws InputError for a
-/// move without a curve, a feed <= 0 or a path along an axis the machine does not have.
+/// move without a curve, a feed <= 0 or a path along an axis the machine does not have (its speed
+/// cap is zero: the rule of plan/constraints.hpp, which the online planner follows too).
 [[nodiscard]] TimeOptimalProfile time_optimal_profile(std::span<const TimeOptimalMove> moves, const Machine& machine,
                                                       const TimeOptimalOptions& options = {});
 

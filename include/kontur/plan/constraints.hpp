@@ -1,0 +1,147 @@
+#pragma once
+// The constraints of a path on a machine, shared by the online planner (look-ahead, pieces,
+// junctions) and the time-optimal reference: per-axis velocity, acceleration and jerk bounds along
+// the path, the centripetal and curvature-change terms, the chord-error speed limit, corner and
+// junction limits, and the rule for an axis the machine lacks (docs/planner.md, "Limits of a
+// piece" and "Time-optimal reference").
+//
+// An axis the machine lacks: a stretch of path (or a point of it) whose unit tangent has a
+// component above tolerances::missing_axis_tangent on that axis cannot be run, and its speed cap
+// is zero (velocity_cap, speed_cap; the time-optimal reference refuses such a path with
+// InputError "missing-axis", as it refuses every path it cannot run). An axis the machine lacks
+// and the path does not move along bounds nothing: its curvature, curvature change and corner
+// jumps are not looked at. Rotary axes do not carry the path.
+#include <kontur/geometry/curve.hpp>
+#include <kontur/machine.hpp>
+#include <kontur/plan/scurve.hpp>
+#include <kontur/tolerances.hpp>
+
+#include <array>
+#include <utility>
+
+namespace kontur::plan {
+
+/// The machine's linear axes by coordinate (X, Y, Z; nullptr where the machine has none).
+using LinearAxes = std::array<const AxisLimits*, 3>;
+
+/// The linear axes of `machine` (rotary axes are left out).
+[[nodiscard]] LinearAxes linear_axes(const Machine& machine) noexcept;
+
+/// The coordinate (0, 1, 2) of the first axis the machine lacks along which the tangent moves
+/// (|t_i| > tolerances::missing_axis_tangent), or -1 if there is none. `tangent` may be a unit
+/// tangent or a bound of its components' magnitudes.
+[[nodiscard]] int missing_axis_moved(const Vec3& tangent, const LinearAxes& axes) noexcept;
+
+/// The velocity part of the speed cap [mm/s]: the smallest of the feed [mm/s], the machine's max
+/// feed and every axis's velocity along the tangent, V_i / |t_i|; zero if the tangent moves an axis
+/// the machine lacks (missing_axis_moved).
+[[nodiscard]] double velocity_cap(const Vec3& tangent, double feed_mm_s, const Machine& machine,
+                                  const LinearAxes& axes) noexcept;
+
+/// The chord-error speed limit [mm/s] at curvature `kappa` [1/mm]:
+/// (2/T) sqrt(R^2 - (R - delta)^2) with R = 1 / kappa (infinity where kappa = 0).
+[[nodiscard]] double chord_cap(double kappa, const Machine& machine) noexcept;
+
+/// Curvature vector K = kappa n = dt/ds [1/mm] and its derivative along the path dK/ds [1/mm^2]
+/// from a point's derivatives up to the third (zero where C' = 0). The online planner's form.
+[[nodiscard]] std::pair<Vec3, Vec3> curvature_vector_and_rate(const Derivatives& d) noexcept;
+
+/// Unit tangent and curvature vector K = kappa n [1/mm] from a point's derivatives up to the
+/// second (zero where C' = 0): the same K as curvature_vector_and_rate, computed as the part of C''
+/// across the tangent over |C'|^2 (the two differ in rounding; the time-optimal reference's form).
+[[nodiscard]] std::pair<Vec3, Vec3> tangent_and_curvature(const Derivatives& d) noexcept;
+
+/// One axis's acceleration constraint at a point in the variables of the time-optimal reference,
+/// u = s_ddot and x = s_dot^2: |t u + k x| <= a, signed so that t >= 0 (a tangent component at or
+/// below tolerances::time_optimal_tangent_zero counts as 0).
+struct AccelerationRow {
+  double t = 0.0;  ///< tangent component [1]
+  double k = 0.0;  ///< curvature vector component [1/mm]
+  double a = 0.0;  ///< the axis's acceleration limit [mm/s^2]
+};
+
+/// The acceleration constraints of a point with unit tangent t and curvature vector k [1/mm], one
+/// per axis the machine has; returns how many of `rows` are set.
+int acceleration_rows(const Vec3& t, const Vec3& k, const LinearAxes& axes, std::array<AccelerationRow, 3>& rows) noexcept;
+
+/// Largest speed [mm/s] through a corner whose unit tangent jumps by `dt` when setpoints a servo
+/// period T apart see the jump as an acceleration v |dt_i| / T within `acceleration_share` of each
+/// axis's limit: min over the axes with |dt_i| > `ignore_below` of share A_i T / |dt_i| (infinity
+/// if none). The time-optimal reference's servo-period corner rule (share 1) and the acceleration
+/// term of the online planner's junction limit (share 0.1).
+[[nodiscard]] double corner_acceleration_cap(const Vec3& dt, const Machine& machine, const LinearAxes& axes,
+                                             double acceleration_share, double ignore_below) noexcept;
+
+/// Per-axis bounds of the geometry of a stretch of path, as the limits need them: maxima over
+/// samples (plan_samples_per_span per span), raised by tolerances::plan_sample_margin.
+struct PathGeometry {
+  Vec3 tangent = Vec3::Zero();         ///< max |t_i| of the unit tangent
+  Vec3 curvature = Vec3::Zero();       ///< max |K_i| of the curvature vector K = kappa n [1/mm]
+  Vec3 curvature_rate = Vec3::Zero();  ///< max |dK_i/ds| along the path [1/mm^2]
+  double max_kappa = 0.0;              ///< largest curvature [1/mm] (for the chord error)
+  /// The bounds of both stretches.
+  void merge(const PathGeometry& other) noexcept;
+};
+
+/// Geometry bounds of a curve between parameters u0 < u1 (inside one span, or sampled per span).
+[[nodiscard]] PathGeometry path_geometry(const Curve& curve, double u0, double u1,
+                                         int samples = tolerances::plan_samples_per_span);
+
+/// The speed cap [mm/s] of a stretch: velocity_cap (the feed, the machine's max feed, every axis's
+/// velocity along the tangent; zero if the stretch moves an axis the machine lacks), the
+/// centripetal acceleration K_i v^2 <= share A_i, the curvature change
+/// K'_i v^3 <= plan_curvature_rate_jerk_share J_i and the chord-error limit (chord_cap).
+[[nodiscard]] double speed_cap(const PathGeometry& g, double feed_mm_s, const Machine& machine,
+                               double centripetal_share) noexcept;
+
+/// The path limits of a stretch of length `length_mm`: its speed cap (speed_cap) and the largest
+/// path acceleration and jerk that keep every axis within its limits at any speed up to the cap:
+/// |t_i| a + K_i v^2 <= A_i, and |t_i| j + 3 K_i v a + K'_i v^3 <= (1 - junction_share) J_i, the
+/// cross term taking at most plan_cross_jerk_share. `junction_jerk_share` is the share of the
+/// junctions at the stretch's ends (see junction). Of the centripetal shares in
+/// tolerances::plan_centripetal_shares, the one with the shortest estimated time is taken.
+[[nodiscard]] PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s,
+                                     const Machine& machine, double junction_jerk_share) noexcept;
+
+/// The path limits of a stretch at a given speed cap [mm/s] (as path_limits, without choosing the
+/// centripetal share): raising the junction share lowers only the jerk.
+[[nodiscard]] PathLimits path_limits_at(const PathGeometry& g, double cap_mm_s, const Machine& machine,
+                                        double junction_jerk_share) noexcept;
+
+/// Geometry of a move as the planner sees it: the curve, its length and the largest speed the
+/// program asks for.
+struct MoveGeometry {
+  const Curve* curve = nullptr;  ///< the path
+  double length_mm = 0.0;        ///< its length [mm]
+  double feed_mm_s = 0.0;        ///< programmed feed (or rapid speed) [mm/s]
+};
+
+/// The path limits of a whole move (path_limits over the geometry of all its spans, `samples`
+/// per span, with smooth junctions at its ends).
+[[nodiscard]] PathLimits move_limits(const MoveGeometry& move, const Machine& machine,
+                                     int samples = tolerances::plan_samples_per_span);
+
+/// What a junction of two stretches allows.
+struct Junction {
+  double velocity = 0.0;     ///< largest speed through it [mm/s] (infinity if smooth)
+  double jerk_share = 0.0;   ///< share of each axis's jerk it uses (0 if smooth)
+};
+
+/// The junction of two stretches, from the end of the first (`end_in`: point and derivatives up to
+/// the second, as the limit from the left) and the start of the second. Setpoints a servo period
+/// T apart see a change of direction as a velocity jump, and a change of curvature as an
+/// acceleration jump, within one period; each axis's jerk (as a finite difference of the
+/// setpoints sees it) stays within `jerk_share` of its limit when
+/// v |t1 - t2|_i / T^2 + v^2 |K1 - K2|_i / T <= jerk_share J_i, and the acceleration spike of a
+/// corner within 1 - max centripetal share of its limit: v |t1 - t2|_i / T <= 0.1 A_i
+/// (corner_acceleration_cap). Where tangent and curvature agree to plan_junction_smooth there is
+/// no limit.
+[[nodiscard]] double junction_limit(const Derivatives& end_in, const Derivatives& start_out,
+                                    const Machine& machine, double jerk_share = 1.0) noexcept;
+
+/// The junction with the share chosen by its kind: none if smooth, plan_corner_jerk_share for a
+/// corner, plan_smooth_junction_jerk_share for a small corner or a curvature jump only.
+[[nodiscard]] Junction junction(const Derivatives& end_in, const Derivatives& start_out,
+                                const Machine& machine) noexcept;
+
+}  // namespace kontur::plan

@@ -1,0 +1,265 @@
+// The constraints of a path on a machine (constraints.hpp): shared by the online planner and the
+// time-optimal reference.
+#include <kontur/geometry/differential.hpp>
+#include <kontur/interpolate/curve_interpolator.hpp>
+#include <kontur/plan/constraints.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+namespace kontur::plan {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+}  // namespace
+
+LinearAxes linear_axes(const Machine& machine) noexcept {
+  LinearAxes axes{};
+  for (const AxisLimits& a : machine.axes) {
+    const int i = linear_axis_index(a.name);
+    if (i >= 0) axes[static_cast<std::size_t>(i)] = &a;
+  }
+  return axes;
+}
+
+int missing_axis_moved(const Vec3& tangent, const LinearAxes& axes) noexcept {
+  for (std::size_t i = 0; i < 3; ++i)
+    if (axes[i] == nullptr && std::abs(tangent[static_cast<Eigen::Index>(i)]) > tolerances::missing_axis_tangent)
+      return static_cast<int>(i);
+  return -1;
+}
+
+double velocity_cap(const Vec3& tangent, double feed_mm_s, const Machine& machine, const LinearAxes& axes) noexcept {
+  if (missing_axis_moved(tangent, axes) >= 0) return 0.0;  // an axis the machine does not have cannot move
+  double v = std::min(feed_mm_s, machine.max_feed_mm_s);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const double t = std::abs(tangent[static_cast<Eigen::Index>(i)]);
+    if (axes[i] != nullptr && t > 0.0) v = std::min(v, axes[i]->max_velocity / t);
+  }
+  return v;
+}
+
+double chord_cap(double kappa, const Machine& machine) noexcept {
+  if (!(kappa > 0.0)) return kInf;
+  return chord_limited_feed(1.0 / kappa, machine.chord_tolerance_mm, machine.servo_period_s);
+}
+
+std::pair<Vec3, Vec3> tangent_and_curvature(const Derivatives& d) noexcept {
+  const double v2 = d[1].squaredNorm();
+  if (!(v2 > 0.0)) return {Vec3::Zero(), Vec3::Zero()};
+  const Vec3 t = d[1] / std::sqrt(v2);
+  return {t, (d[2] - d[2].dot(t) * t) / v2};
+}
+
+int acceleration_rows(const Vec3& t, const Vec3& k, const LinearAxes& axes, std::array<AccelerationRow, 3>& rows) noexcept {
+  int n = 0;
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (axes[i] == nullptr) continue;
+    const auto e = static_cast<Eigen::Index>(i);
+    AccelerationRow r{std::abs(t[e]) > tolerances::time_optimal_tangent_zero ? t[e] : 0.0, k[e], axes[i]->max_acceleration};
+    if (r.t < 0.0) {
+      r.t = -r.t;
+      r.k = -r.k;
+    }
+    rows[static_cast<std::size_t>(n++)] = r;
+  }
+  return n;
+}
+
+double corner_acceleration_cap(const Vec3& dt, const Machine& machine, const LinearAxes& axes,
+                               double acceleration_share, double ignore_below) noexcept {
+  double v = kInf;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const double jump = std::abs(dt[static_cast<Eigen::Index>(i)]);
+    if (axes[i] != nullptr && jump > ignore_below)
+      v = std::min(v, acceleration_share * axes[i]->max_acceleration * machine.servo_period_s / jump);
+  }
+  return v;
+}
+
+void PathGeometry::merge(const PathGeometry& o) noexcept {
+  tangent = tangent.cwiseMax(o.tangent);
+  curvature = curvature.cwiseMax(o.curvature);
+  curvature_rate = curvature_rate.cwiseMax(o.curvature_rate);
+  max_kappa = std::max(max_kappa, o.max_kappa);
+}
+
+std::pair<Vec3, Vec3> curvature_vector_and_rate(const Derivatives& d) noexcept {
+  // With r1 = C', r2 = C'', r3 = C''', q = |r1|^2 and p = r1.r2: K = r2/q - p r1/q^2 = dt/ds, and
+  // dK/ds = (dK/du) / |r1| with dK/du = r3/q - 2 p r2/q^2 - ((r3.r1 + r2.r2) r1 + p r2)/q^2
+  // + 4 p^2 r1/q^3.
+  const Vec3 &r1 = d[1], &r2 = d[2], &r3 = d[3];
+  const double q = r1.squaredNorm();
+  if (!(q > 0.0)) return {Vec3::Zero(), Vec3::Zero()};
+  const double p = r1.dot(r2);
+  const Vec3 k = r2 / q - p * r1 / (q * q);
+  const Vec3 dk_du = r3 / q - 2.0 * p * r2 / (q * q) - ((r3.dot(r1) + r2.squaredNorm()) * r1 + p * r2) / (q * q) +
+                     4.0 * p * p * r1 / (q * q * q);
+  return {k, dk_du / std::sqrt(q)};
+}
+
+PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples) {
+  samples = std::max(samples, 1);
+  // Sample until the tangent turns by at most 0.2 rad between samples (a helix of many turns is
+  // one span); then a component's peak lies at most about 1 % of its range above the samples.
+  for (;;) {
+    PathGeometry hi, lo;
+    lo.tangent = lo.curvature = lo.curvature_rate = Vec3::Constant(kInf);
+    lo.max_kappa = kInf;
+    double max_turn = 0.0;
+    Vec3 t_before = Vec3::Zero();
+    for (int k = 0; k <= samples; ++k) {
+      const double u = k == samples ? u1 : u0 + (u1 - u0) * k / samples;
+      // The span's own polynomial at its right end (the next span may differ there).
+      const Derivatives d = k == samples ? c.derivatives_left(u, 3) : c.derivatives(u, 3);
+      const Vec3 t = unit_tangent(d);
+      if (t.isZero()) continue;
+      if (!t_before.isZero()) max_turn = std::max(max_turn, (t - t_before).norm());
+      t_before = t;
+      const auto [kv, rate] = curvature_vector_and_rate(d);
+      const Vec3 at = t.cwiseAbs(), ak = kv.cwiseAbs(), ar = rate.cwiseAbs();
+      hi.tangent = hi.tangent.cwiseMax(at);
+      hi.curvature = hi.curvature.cwiseMax(ak);
+      hi.curvature_rate = hi.curvature_rate.cwiseMax(ar);
+      hi.max_kappa = std::max(hi.max_kappa, kv.norm());
+      lo.tangent = lo.tangent.cwiseMin(at);
+      lo.curvature = lo.curvature.cwiseMin(ak);
+      lo.curvature_rate = lo.curvature_rate.cwiseMin(ar);
+      lo.max_kappa = std::min(lo.max_kappa, kv.norm());
+    }
+    if (max_turn > 0.2 && samples < 4096) {
+      samples *= 4;
+      continue;
+    }
+    if (!std::isfinite(lo.max_kappa)) return hi;  // no regular point
+    // Constant quantities (a line's tangent, a circle's curvature) are exact; the others are
+    // raised by a share of their range between the samples.
+    constexpr double m = tolerances::plan_sample_margin;
+    hi.tangent = (hi.tangent + m * (hi.tangent - lo.tangent)).cwiseMin(Vec3::Ones());
+    hi.curvature += m * (hi.curvature - lo.curvature);
+    hi.curvature_rate += m * (hi.curvature_rate - lo.curvature_rate);
+    hi.max_kappa += m * (hi.max_kappa - lo.max_kappa);
+    return hi;
+  }
+}
+
+double speed_cap(const PathGeometry& g, double feed_mm_s, const Machine& machine, double centripetal_share) noexcept {
+  const LinearAxes axes = linear_axes(machine);
+  double v = velocity_cap(g.tangent, feed_mm_s, machine, axes);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const AxisLimits* axis = axes[i];
+    if (axis == nullptr) continue;  // not moved (else velocity_cap is zero): it bounds nothing
+    const auto e = static_cast<Eigen::Index>(i);
+    if (g.curvature[e] > 0.0) v = std::min(v, std::sqrt(centripetal_share * axis->max_acceleration / g.curvature[e]));
+    if (g.curvature_rate[e] > 0.0)
+      v = std::min(v, std::cbrt(tolerances::plan_curvature_rate_jerk_share * axis->max_jerk / g.curvature_rate[e]));
+  }
+  return std::min(v, chord_cap(g.max_kappa, machine));
+}
+
+namespace {
+
+// Path acceleration and jerk at speeds up to v (see path_limits).
+PathLimits limits_at_cap(const PathGeometry& g, double v, const Machine& machine, double junction_share) noexcept {
+  PathLimits l;
+  l.max_velocity = v;
+  l.max_acceleration = kInf;
+  l.max_jerk = kInf;
+  for (const AxisLimits& axis : machine.axes) {
+    const int i = linear_axis_index(axis.name);
+    if (i < 0 || !(g.tangent[i] > 0.0)) continue;
+    const double k = g.curvature[i], t = g.tangent[i];
+    double a = (axis.max_acceleration - k * v * v) / t;
+    if (k > 0.0 && v > 0.0) a = std::min(a, tolerances::plan_cross_jerk_share * axis.max_jerk / (3.0 * k * v));
+    l.max_acceleration = std::min(l.max_acceleration, a);
+  }
+  for (const AxisLimits& axis : machine.axes) {
+    const int i = linear_axis_index(axis.name);
+    if (i < 0 || !(g.tangent[i] > 0.0)) continue;
+    const double j = (1.0 - junction_share) * axis.max_jerk - 3.0 * g.curvature[i] * v * l.max_acceleration -
+                     g.curvature_rate[i] * v * v * v;
+    l.max_jerk = std::min(l.max_jerk, j / g.tangent[i]);
+  }
+  return l;
+}
+
+}  // namespace
+
+PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s, const Machine& machine,
+                       double junction_jerk_share) noexcept {
+  PathLimits best;
+  double best_time = kInf;
+  const bool curved = !g.curvature.isZero();
+  for (const double share : tolerances::plan_centripetal_shares) {
+    if (!curved && share != tolerances::plan_centripetal_shares[0]) break;  // one choice on a line
+    const double v = speed_cap(g, feed_mm_s, machine, share);
+    const PathLimits l = limits_at_cap(g, v, machine, junction_jerk_share);
+    // Time estimate: the length at the cap, plus the time to reach the cap and leave it.
+    const double time =
+        v > 0.0 ? length_mm / v + (std::isfinite(l.max_acceleration) ? v / l.max_acceleration : 0.0) : kInf;
+    if (time < best_time || best_time == kInf) {
+      best_time = time;
+      best = l;
+    }
+  }
+  // A stretch along no axis the machine limits (or of speed 0): the first axis's limits.
+  if (!std::isfinite(best.max_acceleration) || !(best.max_acceleration > 0.0))
+    best.max_acceleration = machine.axes.front().max_acceleration;
+  if (!std::isfinite(best.max_jerk) || !(best.max_jerk > 0.0)) best.max_jerk = machine.axes.front().max_jerk;
+  return best;
+}
+
+PathLimits path_limits_at(const PathGeometry& g, double cap_mm_s, const Machine& machine,
+                          double junction_jerk_share) noexcept {
+  PathLimits l = limits_at_cap(g, cap_mm_s, machine, junction_jerk_share);
+  if (!std::isfinite(l.max_acceleration) || !(l.max_acceleration > 0.0))
+    l.max_acceleration = machine.axes.front().max_acceleration;
+  if (!std::isfinite(l.max_jerk) || !(l.max_jerk > 0.0)) l.max_jerk = machine.axes.front().max_jerk;
+  return l;
+}
+
+PathLimits move_limits(const MoveGeometry& move, const Machine& machine, int samples) {
+  const Curve& c = *move.curve;
+  const std::vector<double> bp = c.breakpoints();
+  PathGeometry g;
+  for (std::size_t k = 0; k + 1 < bp.size(); ++k) g.merge(path_geometry(c, bp[k], bp[k + 1], samples));
+  return path_limits(g, move.length_mm, move.feed_mm_s, machine, 0.0);
+}
+
+double junction_limit(const Derivatives& end_in, const Derivatives& start_out, const Machine& machine,
+                      double jerk_share) noexcept {
+  const Vec3 dt = unit_tangent(start_out) - unit_tangent(end_in);
+  const Vec3 dk = curvature_vector_and_rate(start_out).first - curvature_vector_and_rate(end_in).first;
+  double v = kInf;
+  const double T = machine.servo_period_s;
+  for (const AxisLimits& axis : machine.axes) {
+    const int i = linear_axis_index(axis.name);
+    if (i < 0) continue;  // rotary axes do not carry the path
+    const double b = std::abs(dt[i]) > tolerances::plan_junction_smooth ? std::abs(dt[i]) / (T * T) : 0.0;
+    const double a = std::abs(dk[i]) > tolerances::plan_junction_smooth ? std::abs(dk[i]) / T : 0.0;
+    const double c = jerk_share * axis.max_jerk;
+    // a v^2 + b v <= c, solved without cancellation
+    if (a > 0.0) v = std::min(v, 2.0 * c / (b + std::sqrt(b * b + 4.0 * a * c)));
+    else if (b > 0.0) v = std::min(v, c / b);
+  }
+  // the acceleration spike of a corner, v |dt_i| / T, within a tenth of the axis's acceleration
+  return std::min(v, corner_acceleration_cap(dt, machine, linear_axes(machine),
+                                             tolerances::plan_corner_acceleration_share,
+                                             tolerances::plan_junction_smooth));
+}
+
+Junction junction(const Derivatives& end_in, const Derivatives& start_out, const Machine& machine) noexcept {
+  const Vec3 dt = unit_tangent(start_out) - unit_tangent(end_in);
+  const Vec3 dk = curvature_vector_and_rate(start_out).first - curvature_vector_and_rate(end_in).first;
+  const double corner = dt.cwiseAbs().maxCoeff();
+  if (corner <= tolerances::plan_junction_smooth && dk.cwiseAbs().maxCoeff() <= tolerances::plan_junction_smooth)
+    return {kInf, 0.0};
+  const double share = corner < tolerances::plan_small_corner ? tolerances::plan_smooth_junction_jerk_share
+                                                              : tolerances::plan_corner_jerk_share;
+  return {junction_limit(end_in, start_out, machine, share), share};
+}
+
+}  // namespace kontur::plan

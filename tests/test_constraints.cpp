@@ -1,0 +1,104 @@
+// The constraints both planners share (plan/constraints.hpp), and the one rule for an axis the
+// machine lacks: a path that moves along it has a speed cap of zero (the online planner) and is
+// refused (the time-optimal reference); a path that does not move along it is planned as on the
+// machine with the axis, by both.
+#include <gtest/gtest.h>
+#include <kontur/geometry/helix_arc.hpp>
+#include <kontur/geometry/line_segment.hpp>
+#include <kontur/plan/constraints.hpp>
+#include <kontur/plan/time_optimal.hpp>
+
+#include "support/input_error.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace kontur::plan {
+namespace {
+
+// The default machine (200 mm/s, 2000 mm/s^2 per axis) with a max feed the axes decide.
+Machine full_machine() {
+  Machine m = default_machine();
+  m.max_feed_mm_s = 1e5;
+  return m;
+}
+
+Machine without_z() {
+  Machine m = full_machine();
+  m.axes.pop_back();  // X Y Z: no Z
+  m.name = "no Z";
+  return m;
+}
+
+// Largest speed of the time-optimal reference's maximum velocity curve inside the path.
+double reference_cap(const Curve& c, double feed, const Machine& m) {
+  const TimeOptimalMove move{&c, feed, false};
+  const TimeOptimalProfile r = time_optimal_profile({&move, 1}, m);
+  return r.mvc_mm_s[r.mvc_mm_s.size() / 2];
+}
+
+TEST(MissingAxis, BothPlannersGiveTheSameCapOnAMachineWithoutZForAPathInXY) {
+  const Machine full = full_machine(), xy = without_z();
+  const LineSegment line({0, 0, 0}, {30, 40, 0});
+  const double feed = 1000.0;
+  // The online planner's cap of the stretch and the reference's at its points: V_Y / |t_Y| here.
+  const double la = speed_cap(path_geometry(line, line.u_min(), line.u_max()), feed, xy, 0.5);
+  EXPECT_DOUBLE_EQ(la, 200.0 / 0.8);
+  EXPECT_DOUBLE_EQ(reference_cap(line, feed, xy), la);
+  // Both plan such a path as on the machine with Z: the axis bounds nothing.
+  const HelixArc arc(CircleFrame{}, 20.0, 1.5 * std::numbers::pi);
+  for (const Curve* c : {static_cast<const Curve*>(&line), static_cast<const Curve*>(&arc)}) {
+    const PathLimits a = move_limits({c, 1.0, feed}, xy), b = move_limits({c, 1.0, feed}, full);
+    EXPECT_EQ(a.max_velocity, b.max_velocity);
+    EXPECT_EQ(a.max_acceleration, b.max_acceleration);
+    EXPECT_EQ(a.max_jerk, b.max_jerk);
+    const TimeOptimalMove move{c, feed, false};
+    EXPECT_EQ(time_optimal_profile({&move, 1}, xy).total_time_s, time_optimal_profile({&move, 1}, full).total_time_s);
+  }
+  // A tangent component at the tolerance is rounding, not motion along Z.
+  const Vec3 t = Vec3(0.6, 0.8, tolerances::missing_axis_tangent).normalized();
+  EXPECT_EQ(missing_axis_moved(t, linear_axes(xy)), -1);
+  EXPECT_EQ(velocity_cap(t, feed, xy, linear_axes(xy)), velocity_cap(t, feed, full, linear_axes(full)));
+}
+
+TEST(MissingAxis, BothPlannersRefuseAPathThatMovesZOnAMachineWithoutZ) {
+  const Machine xy = without_z();
+  const LineSegment line({0, 0, 0}, {10, 0, 10});
+  const HelixArc helix(CircleFrame{}, 20.0, std::numbers::pi, 5.0);  // rises along Z
+  for (const Curve* c : {static_cast<const Curve*>(&line), static_cast<const Curve*>(&helix)}) {
+    // The online planner: a speed cap of zero.
+    EXPECT_EQ(speed_cap(path_geometry(*c, c->u_min(), c->u_max()), 100.0, xy, 0.5), 0.0);
+    EXPECT_EQ(move_limits({c, 10.0, 100.0}, xy).max_velocity, 0.0);
+    EXPECT_EQ(velocity_cap(c->derivatives(c->u_min(), 1)[1].normalized(), 100.0, xy, linear_axes(xy)), 0.0);
+    // The reference: refused, naming the axis.
+    const TimeOptimalMove move{c, 100.0, false};
+    testing::expect_input_error([&] { (void)time_optimal_profile({&move, 1}, xy); }, "missing-axis", "axis Z");
+  }
+  EXPECT_EQ(missing_axis_moved(Vec3(0, 0, 1), linear_axes(xy)), 2);
+  EXPECT_EQ(missing_axis_moved(Vec3(0, 0, 1), linear_axes(full_machine())), -1);
+}
+
+TEST(Constraints, CornerAccelerationCapIsTheOnePeriodVelocityJump) {
+  const Machine m = without_z();  // A = 2000 mm/s^2, T = 1 ms
+  const LinearAxes axes = linear_axes(m);
+  // A right angle in XY: each axis's tangent jumps by 1, v <= share A T.
+  EXPECT_DOUBLE_EQ(corner_acceleration_cap(Vec3(-1, 1, 0), m, axes, 1.0, 0.0), 2.0);
+  EXPECT_DOUBLE_EQ(corner_acceleration_cap(Vec3(-1, 1, 0), m, axes, 0.1, 1e-9), 0.2);
+  // Jumps at or below ignore_below, and on axes the machine lacks, bound nothing.
+  EXPECT_TRUE(std::isinf(corner_acceleration_cap(Vec3(1e-10, 0, 1), m, axes, 1.0, 1e-9)));
+}
+
+TEST(Constraints, BothCurvatureFormsGiveTheCurvatureVector) {
+  // A circle of radius 20 in XY, at a point where |C'| is not 1: K = -p / R^2, |K| = 1 / R.
+  const HelixArc arc(CircleFrame{}, 20.0, std::numbers::pi);
+  const Derivatives d = arc.derivatives(0.3, 3);
+  const auto [t, k] = tangent_and_curvature(d);
+  const Vec3 k2 = curvature_vector_and_rate(d).first;
+  EXPECT_NEAR(k.norm(), 1.0 / 20.0, 1e-15);
+  EXPECT_NEAR((k - k2).norm(), 0.0, 1e-15);
+  EXPECT_NEAR(t.dot(k), 0.0, 1e-15);
+  EXPECT_NEAR(k.dot(arc.point(0.3)), -1.0, 1e-12);  // towards the centre: K = -p / R^2
+}
+
+}  // namespace
+}  // namespace kontur::plan
