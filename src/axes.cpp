@@ -1,7 +1,7 @@
+#include <fmt/format.h>
+
 #include <kontur/axes.hpp>
 #include <kontur/error.hpp>
-
-#include <fmt/format.h>
 
 namespace kontur {
 
@@ -16,8 +16,7 @@ AxisLayout AxisLayout::from_letters(std::string_view letters) {
   for (const char c : letters) {
     if (known.find(c) == std::string_view::npos)
       throw InputError("axes-invalid", fmt::format("axis '{}' in \"{}\": the axes are X Y Z A B C U V W", c, letters));
-    if (l.index_of(c) >= 0)
-      throw InputError("axes-invalid", fmt::format("axis '{}' twice in \"{}\"", c, letters));
+    if (l.index_of(c) >= 0) throw InputError("axes-invalid", fmt::format("axis '{}' twice in \"{}\"", c, letters));
     const auto i = static_cast<std::size_t>(l.size_);
     l.letters_[i] = c;
     l.kinds_[i] = (c == 'A' || c == 'B' || c == 'C') ? AxisKind::rotary : AxisKind::linear;

@@ -1,19 +1,18 @@
 // The independent checker: planner output passes; a disturbed setpoint, a NaN or a jump is caught.
 #include <gtest/gtest.h>
+
+#include <kontur/geometry/corner_blend_curve.hpp>
 #include <kontur/geometry/helix_arc.hpp>
 #include <kontur/geometry/line_segment.hpp>
 #include <kontur/geometry/nurbs.hpp>
-#include <kontur/geometry/corner_blend_curve.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/verify/checker.hpp>
+#include <limits>
+#include <numbers>
+#include <random>
 
 #include "support/planner_run.hpp"
 #include "support/random_curves.hpp"
-
-#include <random>
-
-#include <limits>
-#include <numbers>
 
 namespace kontur::verify {
 namespace {
@@ -117,8 +116,8 @@ TEST(Checker, MoveIdsKeepAFeedAndItsRetractAlongTheSameLineApart) {
   const Machine m = default_machine();
   const Vec3 top(0, 0, 5), bottom(0, 0, -5);
   std::vector<program::Move> moves = {
-      program::move_along(std::make_shared<LineSegment>(top, bottom), 10.0, true, 27),   // feed down
-      program::move_along(std::make_shared<LineSegment>(bottom, top), 200.0, true, 27)}; // rapid up
+      program::move_along(std::make_shared<LineSegment>(top, bottom), 10.0, true, 27),    // feed down
+      program::move_along(std::make_shared<LineSegment>(bottom, top), 200.0, true, 27)};  // rapid up
   for (std::size_t i = 0; i < moves.size(); ++i) moves[i].id = static_cast<program::MoveId>(i);
   const std::vector<Sample> samples = testing::plan_and_sample(m, moves);
   const Report r = check(samples, moves, m);

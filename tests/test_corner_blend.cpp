@@ -2,19 +2,20 @@
 // tolerance of the programmed lines, curvature-continuous at both ends, none under exact stop,
 // lines between blends keep a straight middle, and a blended square passes the check faster.
 #include <gtest/gtest.h>
-#include <kontur/geometry/line_segment.hpp>
-#include <kontur/machine.hpp>
-#include <kontur/plan/motion_planner.hpp>
-#include <kontur/program/corner_blender.hpp>
-#include <kontur/verify/checker.hpp>
-
-#include "support/planner_run.hpp"
 
 #include <cmath>
 #include <deque>
+#include <kontur/geometry/line_segment.hpp>
+#include <kontur/machine.hpp>
+#include <kontur/plan/constraints.hpp>
+#include <kontur/plan/motion_planner.hpp>
+#include <kontur/program/corner_blender.hpp>
+#include <kontur/verify/checker.hpp>
 #include <memory>
 #include <random>
 #include <vector>
+
+#include "support/planner_run.hpp"
 
 namespace kontur {
 namespace {
@@ -157,7 +158,8 @@ RunResult run_polygon(bool blend, const Machine& machine, int sides = 4) {
     const double a = 2.0 * M_PI * i / sides;
     pts.emplace_back(20.0 * std::cos(a), 20.0 * std::sin(a), 0.0);
   }
-  program::CornerBlender blender(blend, &machine);
+  program::CornerBlender blender(
+      blend, &machine, [&](const Curve& c, double feed_mm_s) { return plan::curve_speed_cap(c, feed_mm_s, machine); });
   std::vector<program::Move> moves;
   for (std::size_t i = 0; i + 1 < pts.size(); ++i)
     blender.push(line_move(pts[i], pts[i + 1], machine.path_tolerance_mm, 150.0, false, static_cast<long>(i + 1)),

@@ -173,14 +173,14 @@ TEST(MotionPlanner, StreamingGivesTheSameSetpointsAsPlanningAtOnce) {
 // time, with setpoints carrying the dwell's line; the move after it starts from rest.
 TEST(MotionPlanner, DwellHoldsThePositionForItsTime) {
   const Machine m = default_machine();
-  testing::PlannerRun p(m);
+  testing::PlannerRun run_with_dwell(m);
   std::vector<Setpoint> pts;
-  p.planner.push(line({0, 0, 0}, {10, 0, 0}, 100.0, 1));
-  p.planner.dwell(0.25, 2);
-  p.planner.push(line({10, 0, 0}, {10, 10, 0}, 100.0, 3));
-  p.planner.finish();
-  p.drain(pts);
-  ASSERT_TRUE(p.sampler.done());
+  run_with_dwell.planner.push(line({0, 0, 0}, {10, 0, 0}, 100.0, 1));
+  run_with_dwell.planner.dwell(0.25, 2);
+  run_with_dwell.planner.push(line({10, 0, 0}, {10, 10, 0}, 100.0, 3));
+  run_with_dwell.planner.finish();
+  run_with_dwell.drain(pts);
+  ASSERT_TRUE(run_with_dwell.sampler.done());
   std::size_t held = 0;
   for (const auto& p : pts)
     if (p.source_line == 2) {

@@ -1,25 +1,24 @@
 // The real-time contract: evaluation, stepping and u(s) allocate nothing (counted by replacing
 // the global operator new for this test binary).
 #include <gtest/gtest.h>
-#include <kontur/interpolate/forward_difference.hpp>
-#include <kontur/interpolate/curve_interpolator.hpp>
-#include <kontur/geometry/length.hpp>
-#include <kontur/geometry/line_segment.hpp>
-#include <kontur/geometry/nurbs.hpp>
-#include <kontur/plan/motion_planner.hpp>
-
-#include "support/planner_run.hpp"
-
-#include "support/random_curves.hpp"
 
 #include <atomic>
 #include <cstdlib>
+#include <kontur/geometry/length.hpp>
+#include <kontur/geometry/line_segment.hpp>
+#include <kontur/geometry/nurbs.hpp>
+#include <kontur/interpolate/curve_interpolator.hpp>
+#include <kontur/interpolate/forward_difference.hpp>
+#include <kontur/plan/motion_planner.hpp>
 #include <new>
+
+#include "support/planner_run.hpp"
+#include "support/random_curves.hpp"
 
 namespace {
 std::atomic<long> g_allocations{0};
 std::atomic<long> g_frees{0};
-}
+}  // namespace
 
 void* operator new(std::size_t n) {
   g_allocations.fetch_add(1, std::memory_order_relaxed);

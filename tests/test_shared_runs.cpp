@@ -6,13 +6,13 @@
 // chord tolerance, start and end reached (1e-9 mm), no NaN. The programs the reader stops on are
 // listed with their messages in test_gcode_shared_programs.cpp.
 #include <gtest/gtest.h>
+
+#include <deque>
+#include <filesystem>
 #include <kontur/error.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/pipeline.hpp>
 #include <kontur/verify/checker.hpp>
-
-#include <deque>
-#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,8 +23,8 @@ namespace {
 const std::filesystem::path shared_dir = std::filesystem::path(KONTUR_SHARED_DIR) / "data" / "gcode";
 
 struct RunCase {
-  std::string program;  // relative to shared_dir
-  std::string machine;  // file name in linuxcnc-tp/configs
+  std::string program;          // relative to shared_dir
+  std::string machine;          // file name in linuxcnc-tp/configs
   double servo_period_s = 0.0;  // when > 0: instead of the machine's [s]
 };
 

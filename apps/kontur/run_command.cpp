@@ -2,20 +2,7 @@
 // program's blocks (validated first: a program with an error yields no setpoint) are planned on
 // the machine and sampled at its servo period; the setpoints go to a CSV or binary file (or
 // stdout) as they are made, checked independently on the way, and a JSON summary follows.
-#include "commands.hpp"
-#include "report_output.hpp"
-#include "run_report.hpp"
-#include "summary_output.hpp"
-
-#include <kontur/error.hpp>
-#include <kontur/io/atomic_file.hpp>
-#include <kontur/io/setpoint_writer.hpp>
-#include <kontur/machine.hpp>
-#include <kontur/pipeline.hpp>
-
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
-
 #include <unistd.h>
 
 #include <algorithm>
@@ -25,7 +12,18 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <kontur/error.hpp>
+#include <kontur/io/atomic_file.hpp>
+#include <kontur/io/setpoint_writer.hpp>
+#include <kontur/machine.hpp>
+#include <kontur/pipeline.hpp>
 #include <memory>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "report_output.hpp"
+#include "run_report.hpp"
+#include "summary_output.hpp"
 
 namespace kontur::app {
 namespace {
@@ -97,7 +95,8 @@ bool run_program(const RunOptions& o) {
   if (!o.machine.empty()) inputs.emplace_back(o.machine);
   if (!o.report.empty()) {
     if (o.report == "-" && o.output == "-")
-      throw CLI::ValidationError("--report", "--report - needs -o FILE: the setpoints already go to the standard output");
+      throw CLI::ValidationError("--report",
+                                 "--report - needs -o FILE: the setpoints already go to the standard output");
     if (o.report != "-") {
       check_output_not_input(o.report, inputs);
       if (o.output != "-") check_output_not_input(o.report, {o.output});
@@ -149,8 +148,9 @@ bool run_program(const RunOptions& o) {
 
 void register_run_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<RunOptions>();
-  CLI::App* cmd = app.add_subcommand("run", "Run a part program: plan the motion on the machine and write the "
-                                            "setpoints at its servo period, with an independent check of the limits.");
+  CLI::App* cmd = app.add_subcommand("run",
+                                     "Run a part program: plan the motion on the machine and write the "
+                                     "setpoints at its servo period, with an independent check of the limits.");
   cmd->add_option("PROGRAM", o->program, "part program (G-code)")->required();
   cmd->add_option("--machine", o->machine, "machine file: Kontur TOML, or LinuxCNC INI (default: embedded)");
   cmd->add_option("-o,--output", o->output, "setpoint file, '-' for stdout")->capture_default_str();
@@ -170,12 +170,13 @@ void register_run_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--quiet", o->quiet, "no progress bar and no summary on stderr (errors are still printed)");
   cmd->add_flag("--no-blend", o->no_blend,
                 "do not blend corners between lines within the G64 tolerance (each corner is a junction)");
-  cmd->footer("Example:\n  kontur run examples/programs/square_arc.ngc -o square_arc.csv --summary square_arc.json "
-              "--report square_arc.html\n"
-              "  kontur run examples/programs/square_arc.ngc -o - --quiet | head   (setpoints to stdout)\n"
-              "A progress bar is drawn on stderr when it is a terminal and the run takes longer than a second.\n"
-              "Exit codes: 0 setpoints written and within the limits, 1 invalid program or machine, 2 wrong command "
-              "line, 4 setpoints written but the check found a limit exceeded (see the summary).");
+  cmd->footer(
+      "Example:\n  kontur run examples/programs/square_arc.ngc -o square_arc.csv --summary square_arc.json "
+      "--report square_arc.html\n"
+      "  kontur run examples/programs/square_arc.ngc -o - --quiet | head   (setpoints to stdout)\n"
+      "A progress bar is drawn on stderr when it is a terminal and the run takes longer than a second.\n"
+      "Exit codes: 0 setpoints written and within the limits, 1 invalid program or machine, 2 wrong command "
+      "line, 4 setpoints written but the check found a limit exceeded (see the summary).");
   cmd->callback([o, &exit_code]() { exit_code = run_program(*o) ? exit_ok : exit_check_failed; });
 }
 

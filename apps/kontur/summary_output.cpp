@@ -1,8 +1,7 @@
 #include "summary_output.hpp"
 
-#include <kontur/io/atomic_file.hpp>
-
 #include <iostream>
+#include <kontur/io/atomic_file.hpp>
 
 namespace kontur::app {
 
@@ -13,7 +12,8 @@ void write_summary(const std::string& text, const std::string& path, bool quiet,
   } else if (path == "-") {
     std::cout << text;
   } else {
-    write_file_atomically(path, [&](std::ostream& out) { out << text; }, inputs);
+    write_file_atomically(
+        path, [&](std::ostream& out) { out << text; }, inputs);
   }
 }
 

@@ -2,21 +2,20 @@
 // (Kontur's CSV or binary, or another planner's written in the same format): finite differences
 // of the setpoints against the machine's axis limits, the distance of every setpoint and every
 // chord from the programmed path, the start and end. Nothing of the planner is used.
-#include "commands.hpp"
-#include "run_report.hpp"
-#include "summary_output.hpp"
-
-#include <kontur/error.hpp>
-#include <kontur/io/atomic_file.hpp>
-#include <kontur/machine.hpp>
-#include <kontur/pipeline.hpp>
-
 #include <fmt/format.h>
 
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <kontur/error.hpp>
+#include <kontur/io/atomic_file.hpp>
+#include <kontur/machine.hpp>
+#include <kontur/pipeline.hpp>
 #include <memory>
+
+#include "commands.hpp"
+#include "run_report.hpp"
+#include "summary_output.hpp"
 
 namespace kontur::app {
 namespace {
@@ -58,21 +57,24 @@ bool verify_setpoints(const VerifyOptions& o) {
 void register_verify_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<VerifyOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "verify", "Check a setpoint file (CSV or binary, docs/setpoints.md) against a part program and a machine, "
-                "independently of the planner: axis velocity, acceleration and jerk by finite differences, the "
-                "distance of setpoints and chords from the path, the start and the end.");
+      "verify",
+      "Check a setpoint file (CSV or binary, docs/setpoints.md) against a part program and a machine, "
+      "independently of the planner: axis velocity, acceleration and jerk by finite differences, the "
+      "distance of setpoints and chords from the path, the start and the end.");
   cmd->add_option("PROGRAM", o->program, "part program (G-code) the setpoints should follow")->required();
   cmd->add_option("SETPOINTS", o->setpoints, "setpoint file: CSV (t,x,y,z,v,block) or binary (KONTURSP)")->required();
   cmd->add_option("--machine", o->machine, "machine file: Kontur TOML, or LinuxCNC INI (default: embedded)");
-  cmd->add_option("--summary", o->summary, "JSON summary file, per program and per block (default: stderr); - for stdout");
+  cmd->add_option("--summary", o->summary,
+                  "JSON summary file, per program and per block (default: stderr); - for stdout");
   cmd->add_option("--report", o->report, "write the HTML report of the setpoints to FILE (docs/report.md)")
       ->type_name("FILE");
   cmd->add_flag("--quiet", o->quiet, "no summary on stderr (errors are still printed)");
   cmd->add_flag("--no-blend", o->no_blend, "the path without corner blends (setpoints of kontur run --no-blend)");
-  cmd->footer("Example:\n  kontur run examples/programs/square_arc.ngc -o square_arc.csv --quiet\n"
-              "  kontur verify examples/programs/square_arc.ngc square_arc.csv --summary -\n"
-              "Exit codes: 0 within every limit, 1 invalid program, machine or setpoint file, 2 wrong command line, "
-              "4 a limit exceeded or the path left (see \"failures\" in the summary).");
+  cmd->footer(
+      "Example:\n  kontur run examples/programs/square_arc.ngc -o square_arc.csv --quiet\n"
+      "  kontur verify examples/programs/square_arc.ngc square_arc.csv --summary -\n"
+      "Exit codes: 0 within every limit, 1 invalid program, machine or setpoint file, 2 wrong command line, "
+      "4 a limit exceeded or the path left (see \"failures\" in the summary).");
   cmd->callback([o, &exit_code]() { exit_code = verify_setpoints(*o) ? exit_ok : exit_check_failed; });
 }
 

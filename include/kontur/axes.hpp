@@ -4,11 +4,10 @@
 // rotary [deg], where the tool point's X Y Z sit, and the rule a feed applies by). The tool path
 // (X Y Z, what curves describe) and the axis vector are kept apart: a later kinematics stage maps
 // one to the other. Today the layout is X Y Z, and the axis vector equals the tool point.
-#include <kontur/geometry/curve.hpp>
-
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
+#include <kontur/geometry/curve.hpp>
 #include <string>
 #include <string_view>
 
@@ -30,7 +29,7 @@ enum class FeedRule { linuxcnc };
 
 /// The axes of the setpoints, in order.
 class AxisLayout {
-public:
+ public:
   /// X Y Z, linear, LinuxCNC's feed rule.
   [[nodiscard]] static AxisLayout xyz();
   /// Axes by letters (each of X Y Z A B C U V W at most once; A B C rotary, the others linear);
@@ -57,7 +56,7 @@ public:
 
   friend bool operator==(const AxisLayout&, const AxisLayout&) = default;
 
-private:
+ private:
   std::array<char, max_axes> letters_{};
   std::array<AxisKind, max_axes> kinds_{};
   std::array<int, 3> tool_{-1, -1, -1};  // index of X, Y, Z (-1: absent)

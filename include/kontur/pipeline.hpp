@@ -7,14 +7,13 @@
 //   -> trajectory::Sampler (setpoints at the servo period) -> sinks and verify::Checker.
 // `kontur run` and `kontur verify`, the shared-program tests and the benchmarks all call this;
 // nothing retypes it.
+#include <functional>
 #include <kontur/axes.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/program/move.hpp>
 #include <kontur/program/program_path.hpp>
 #include <kontur/trajectory/sampler.hpp>
 #include <kontur/verify/checker.hpp>
-
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -31,8 +30,8 @@ struct PipelineOptions {
 /// What a run hands out while it goes. Every handler may be empty.
 struct PipelineEvents {
   std::function<void(const trajectory::Setpoint&)> setpoint;  ///< each setpoint, in order
-  verify::Observer observer;                                   ///< the checker's measures of each setpoint
-  std::function<void(long line)> progress;                     ///< after each block: its source line
+  verify::Observer observer;                                  ///< the checker's measures of each setpoint
+  std::function<void(long line)> progress;                    ///< after each block: its source line
 };
 
 /// The outcome of a run or of a check of a setpoint file.
@@ -46,7 +45,7 @@ struct RunResult {
 };
 
 class Pipeline {
-public:
+ public:
   /// Runs on `machine` (copied; validated by its reader) with `options`.
   explicit Pipeline(Machine machine, PipelineOptions options = {});
   Pipeline(const Pipeline&) = delete;
@@ -69,7 +68,7 @@ public:
   /// The setpoints' axis layout.
   [[nodiscard]] const AxisLayout& layout() const noexcept { return layout_; }
 
-private:
+ private:
   Machine machine_;
   PipelineOptions options_;
   AxisLayout layout_ = AxisLayout::xyz();

@@ -202,7 +202,7 @@ inline constexpr double blend_tolerance_share = 0.999;
 inline constexpr int blend_deviation_samples = 256;
 /// Samples of a blend (plus successive parabolic interpolation around every local maximum) when
 /// the checker measures its distance from the programmed lines, its own way (verify::blend_deviation).
-inline constexpr int check_blend_samples = 1024;
+inline constexpr int check_blend_samples = 256;
 /// The checker accepts a blend whose deviation exceeds its tolerance by at most this, relative.
 inline constexpr double blend_deviation_relative = 1e-9;
 

@@ -1,21 +1,10 @@
-#include <kontur/geometry/corner_blend_curve.hpp>
-#include <kontur/tolerances.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <kontur/geometry/corner_blend_curve.hpp>
+#include <kontur/geometry/differential.hpp>
+#include <kontur/tolerances.hpp>
 
 namespace kontur {
-namespace {
-
-// Distance from p to the segment [a, b] [mm].
-double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) noexcept {
-  const Vec3 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (p - a - t * ab).norm();
-}
-
-}  // namespace
 
 Derivatives CornerBlendCurve::derivatives(double u, int order) const noexcept {
   u = std::clamp(u, 0.0, 1.0);

@@ -47,4 +47,11 @@ double chord_error(const Curve& curve, double u0, double u1, int samples) noexce
   return worst;
 }
 
+double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) noexcept {
+  const Vec3 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (p - a - t * ab).norm();
+}
+
 }  // namespace kontur

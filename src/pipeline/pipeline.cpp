@@ -1,13 +1,13 @@
-#include <kontur/error.hpp>
-#include <kontur/io/setpoint_reader.hpp>
-#include <kontur/pipeline.hpp>
-#include <kontur/plan/motion_planner.hpp>
-#include <kontur/plan/time_optimal.hpp>
-#include <kontur/report/summary.hpp>
-
 #include <fmt/format.h>
 
 #include <cmath>
+#include <kontur/error.hpp>
+#include <kontur/io/setpoint_reader.hpp>
+#include <kontur/pipeline.hpp>
+#include <kontur/plan/constraints.hpp>
+#include <kontur/plan/motion_planner.hpp>
+#include <kontur/plan/time_optimal.hpp>
+#include <kontur/report/summary.hpp>
 
 namespace kontur {
 namespace {
@@ -27,7 +27,11 @@ double time_optimal_time(const std::vector<program::Move>& moves, const Machine&
 }  // namespace
 
 Pipeline::Pipeline(Machine machine, PipelineOptions options)
-    : machine_(std::move(machine)), options_(options), path_(machine_, options.blend) {}
+    : machine_(std::move(machine)),
+      options_(options),
+      path_(machine_, options.blend, [this](const Curve& blend, double feed_mm_s) {
+        return plan::curve_speed_cap(blend, feed_mm_s, machine_);
+      }) {}
 
 RunResult Pipeline::run(const std::string& program, const PipelineEvents& events) {
   trajectory::Trajectory trajectory;
@@ -71,7 +75,8 @@ RunResult Pipeline::verify(const std::string& program, const std::string& setpoi
   path_.read(program, {});
   const std::vector<program::Move>& moves = path_.moves();
   if (moves.empty())
-    throw InputError("program-no-motion", fmt::format("{}: the program has no move to check setpoints against", program));
+    throw InputError("program-no-motion",
+                     fmt::format("{}: the program has no move to check setpoints against", program));
   if (const std::optional<double> period = setpoint_file_period(setpoints);
       period && std::abs(*period - machine_.servo_period_s) > 1e-12 * machine_.servo_period_s)
     throw InputError("setpoints-period",

@@ -262,4 +262,9 @@ Junction junction(const Derivatives& end_in, const Derivatives& start_out, const
   return {junction_limit(end_in, start_out, machine, share), share};
 }
 
+double curve_speed_cap(const Curve& curve, double feed_mm_s, const Machine& machine) {
+  const PathGeometry g = path_geometry(curve, curve.u_min(), curve.u_max());
+  return speed_cap(g, feed_mm_s, machine, tolerances::plan_centripetal_shares[0]);
+}
+
 }  // namespace kontur::plan

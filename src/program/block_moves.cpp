@@ -1,10 +1,9 @@
+#include <fmt/format.h>
+
 #include <kontur/error.hpp>
 #include <kontur/geometry/length.hpp>
 #include <kontur/geometry/span_polynomial.hpp>
 #include <kontur/program/block_moves.hpp>
-
-#include <fmt/format.h>
-
 #include <memory>
 #include <type_traits>
 #include <variant>
@@ -41,20 +40,21 @@ Move move_of(const gcode::Block& b, const Machine& machine) {
   m.source_line = b.location.line;
   m.type = gcode::to_string(b.type);
   if (!m.curve) return m;  // no motion (a dwell)
+  // The length, integrated once (lines and arcs: exact; NURBS and conics: the same quadrature of
+  // the same curve as the block's length_mm, of the curve the planner runs).
+  const bool exact = std::holds_alternative<LineSegment>(b.geometry) || std::holds_alternative<HelixArc>(b.geometry);
+  const double len = exact ? *b.length_mm() : length(*m.curve);                                     // [mm]
   double feed = b.type == gcode::BlockType::rapid ? machine.rapid_feed_mm_s : b.feed.value / 60.0;  // [mm/s]
-  if (b.feed.mode == gcode::FeedMode::inverse_time && b.type != gcode::BlockType::rapid) {
-    const auto len = b.length_mm();
-    feed = len && b.feed.duration_s() > 0.0 ? *len / b.feed.duration_s() : machine.max_feed_mm_s;
-  }
+  if (b.feed.mode == gcode::FeedMode::inverse_time && b.type != gcode::BlockType::rapid)
+    feed = b.feed.duration_s() > 0.0 ? len / b.feed.duration_s() : machine.max_feed_mm_s;
   if (!(feed > 0.0))
-    throw InputError("feed-missing", fmt::format("{}:{}: a feed move with no feed: program an F word before it",
-                                                 b.location.file ? *b.location.file : std::string("?"),
-                                                 b.location.line));
+    throw InputError("feed-missing",
+                     fmt::format("{}:{}: a feed move with no feed: program an F word before it",
+                                 b.location.file ? *b.location.file : std::string("?"), b.location.line));
   m.feed_mm_s = feed;
   m.exact_stop = b.modal.path_control != gcode::PathControl::blend;
   m.corner_tolerance_mm = corner_tolerance(b, machine);
-  const auto len = b.length_mm();
-  m.length_mm = len ? *len : length(*m.curve);
+  m.length_mm = len;
   return m;
 }
 

@@ -1,11 +1,9 @@
-#include <kontur/geometry/length.hpp>
-#include <kontur/geometry/line_segment.hpp>
-#include <kontur/plan/lookahead.hpp>
-#include <kontur/program/corner_blender.hpp>
-#include <kontur/tolerances.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <kontur/geometry/length.hpp>
+#include <kontur/geometry/line_segment.hpp>
+#include <kontur/program/corner_blender.hpp>
+#include <kontur/tolerances.hpp>
 #include <limits>
 #include <memory>
 
@@ -13,12 +11,12 @@ namespace kontur::program {
 namespace {
 
 // Is the blend (trim d [mm]) estimated to be faster than the corner's stop?
-bool worth_blending(const CornerBlendCurve& blend, double d, double feed_mm_s, const Machine& machine) {
+bool worth_blending(const CornerBlendCurve& blend, double d, double feed_mm_s, const Machine& machine,
+                    const BlendSpeed& speed) {
   double jerk = std::numeric_limits<double>::infinity();  // smallest linear axis jerk [mm/s^3]
   for (const AxisLimits& a : machine.axes)
     if (linear_axis_index(a.name) >= 0) jerk = std::min(jerk, a.max_jerk);
-  const plan::PathGeometry g = plan::path_geometry(blend, 0.0, 1.0);
-  const double v = plan::speed_cap(g, feed_mm_s, machine, tolerances::plan_centripetal_shares[0]);  // [mm/s]
+  const double v = speed(blend, feed_mm_s);  // [mm/s]
   if (!(v > 0.0)) return false;
   const double t_blend = 2.0 * d / v;
   const double t_stop = std::max(2.0 * std::cbrt(6.0 * d / jerk), 2.0 * d / feed_mm_s);
@@ -52,7 +50,7 @@ void CornerBlender::push(const Move& move, std::vector<Move>& out) {
           double d = std::min(half * la, half * lb);
           if (g > 0.0) d = std::min(d, tolerances::blend_tolerance_share * tolerance_mm / g);
           auto blend = std::make_shared<const CornerBlendCurve>(h.to, t1, t2, d);
-          if (machine_ != nullptr && !worth_blending(*blend, d, move.feed_mm_s, *machine_)) {
+          if (machine_ != nullptr && speed_ && !worth_blending(*blend, d, move.feed_mm_s, *machine_, speed_)) {
             flush(out);
             held_ = Held{move, line->start(), line->start(), line->end()};
             return;

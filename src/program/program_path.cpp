@@ -4,8 +4,8 @@
 
 namespace kontur::program {
 
-ProgramPath::ProgramPath(const Machine& machine, bool blend)
-    : machine_(machine), blend_(blend), blender_(blend, &machine) {}
+ProgramPath::ProgramPath(const Machine& machine, bool blend, BlendSpeed speed)
+    : machine_(machine), blend_(blend), speed_(std::move(speed)), blender_(blend, &machine, speed_) {}
 
 void ProgramPath::take(std::vector<Move>& ready, const PathHandlers& handlers) {
   for (Move& m : ready) {
@@ -18,7 +18,7 @@ void ProgramPath::take(std::vector<Move>& ready, const PathHandlers& handlers) {
 
 void ProgramPath::read(const std::string& program, const PathHandlers& handlers) {
   moves_.clear();
-  blender_ = CornerBlender(blend_, &machine_);
+  blender_ = CornerBlender(blend_, &machine_, speed_);
   std::vector<Move> ready;
   gcode::for_each_block(program, [&](const gcode::Block& b) {
     Move move = move_of(b, machine_);

@@ -1,6 +1,5 @@
-#include <kontur/trajectory/sampler.hpp>
-
 #include <algorithm>
+#include <kontur/trajectory/sampler.hpp>
 
 namespace kontur::trajectory {
 

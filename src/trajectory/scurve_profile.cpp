@@ -1,7 +1,6 @@
-#include <kontur/trajectory/scurve_profile.hpp>
-
 #include <algorithm>
 #include <cstddef>
+#include <kontur/trajectory/scurve_profile.hpp>
 
 namespace kontur::trajectory {
 

@@ -1,10 +1,10 @@
-#include <kontur/tolerances.hpp>
-#include <kontur/verify/checker.hpp>
-
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <kontur/geometry/differential.hpp>
+#include <kontur/tolerances.hpp>
+#include <kontur/verify/checker.hpp>
 #include <limits>
 
 namespace kontur::verify {
@@ -21,7 +21,10 @@ double refine(const Curve& c, const Vec3& p, double a, double b, double u) {
     // (rounding can make f exactly zero: u is then the foot of the normal, unless it is a farthest
     // point or C' vanishes there)
     if (f == 0.0 && fp > 0.0 && d[1].squaredNorm() > 0.0) return u;
-    if (f > 0.0) b = u; else a = u;
+    if (f > 0.0)
+      b = u;
+    else
+      a = u;
     double next = fp > 0.0 ? u - f / fp : 0.5 * (a + b);
     if (!(next >= a && next <= b)) next = 0.5 * (a + b);
     // A few units in the last place: Newton's step is then rounding noise (it may creep forever).
@@ -57,14 +60,6 @@ double project(const Curve& c, const std::vector<double>& bp, const Vec3& p, dou
   }
   const double u_global = refine(c, p, std::max(c.u_min(), best_u - step), std::min(c.u_max(), best_u + step), best_u);
   return (c.point(u_global) - p).squaredNorm() < d_local ? u_global : u_local;
-}
-
-// Distance from p to the segment [a, b] [mm].
-double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) noexcept {
-  const Vec3 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (p - a - t * ab).norm();
 }
 
 }  // namespace
@@ -146,7 +141,10 @@ std::vector<std::string> Report::failures(const Machine& machine) const {
 
 Checker::Checker(const std::vector<program::Move>& moves, const Machine& machine, const AxisLayout& layout,
                  Observer observer)
-    : moves_(moves), machine_(machine), layout_(layout), observer_(std::move(observer)),
+    : moves_(moves),
+      machine_(machine),
+      layout_(layout),
+      observer_(std::move(observer)),
       period_(machine.servo_period_s) {
   // The axes of the layout with their limits, in the machine's order (the worst axis is the first
   // with the largest ratio).

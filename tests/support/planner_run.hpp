@@ -6,7 +6,6 @@
 #include <kontur/program/move.hpp>
 #include <kontur/trajectory/sampler.hpp>
 #include <kontur/trajectory/trajectory.hpp>
-
 #include <vector>
 
 namespace kontur::testing {

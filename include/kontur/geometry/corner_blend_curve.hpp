@@ -2,7 +2,6 @@
 // The curve that joins two lines at a corner within a tolerance (the corner blender's blend,
 // program/corner_blender.hpp), and the measure the blender sizes it with.
 #include <kontur/geometry/curve.hpp>
-
 #include <vector>
 
 namespace kontur {
@@ -14,7 +13,7 @@ namespace kontur {
 /// B(0) = P - d t1, B(1) = P + d t2, B' = 5d/3 t1 and 5d/3 t2 there, B'' = 0 at both ends (exactly:
 /// the polynomials have integer coefficients).
 class CornerBlendCurve final : public Curve {
-public:
+ public:
   CornerBlendCurve(const Vec3& corner, const Vec3& t1, const Vec3& t2, double d_mm) noexcept
       : corner_(corner), t1_(t1), t2_(t2), d_(d_mm) {}
   [[nodiscard]] double u_min() const noexcept override { return 0.0; }
@@ -26,7 +25,7 @@ public:
   /// The trim distance d on each line [mm].
   [[nodiscard]] double trim_mm() const noexcept { return d_; }
 
-private:
+ private:
   Vec3 corner_, t1_, t2_;
   double d_;
 };

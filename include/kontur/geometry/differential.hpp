@@ -19,5 +19,7 @@ namespace kontur {
 /// Chord error [mm] of the step from u0 to u1 on a curve, measured as the largest distance of
 /// the curve between u0 and u1 from the chord, sampled at `samples` interior points.
 [[nodiscard]] double chord_error(const Curve& curve, double u0, double u1, int samples = 16) noexcept;
+/// Distance [mm] from the point p to the segment [a, b] (to a when a = b).
+[[nodiscard]] double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) noexcept;
 
 }  // namespace kontur

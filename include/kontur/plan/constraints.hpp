@@ -94,6 +94,11 @@ struct PathGeometry {
 [[nodiscard]] double speed_cap(const PathGeometry& g, double feed_mm_s, const Machine& machine,
                                double centripetal_share) noexcept;
 
+/// The speed cap [mm/s] of a whole curve at a programmed feed [mm/s] (speed_cap of its geometry
+/// sampled over its parameter range, the first centripetal share): what the corner blender's
+/// estimate of a blend's speed uses (program::BlendSpeed, wired by the pipeline).
+[[nodiscard]] double curve_speed_cap(const Curve& curve, double feed_mm_s, const Machine& machine);
+
 /// The path limits of a stretch of length `length_mm`: its speed cap (speed_cap) and the largest
 /// path acceleration and jerk that keep every axis within its limits at any speed up to the cap:
 /// |t_i| a + K_i v^2 <= A_i, and |t_i| j + 3 K_i v a + K'_i v^3 <= (1 - junction_share) J_i, the

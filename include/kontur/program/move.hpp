@@ -3,9 +3,8 @@
 // of the tool point), its feed, its corner tolerance, where it came from, and an id: its index in
 // the program's path, so that every later stage (segments, setpoints, the checker, the summary)
 // names the move it belongs to without guessing from source lines.
-#include <kontur/geometry/curve.hpp>
-
 #include <cstdint>
+#include <kontur/geometry/curve.hpp>
 #include <limits>
 #include <memory>
 #include <optional>

@@ -3,12 +3,11 @@
 // blended within the G64 tolerance (CornerBlender), dwells stop the motion, and every move gets
 // its id (its index in the path). One place, so that the pipeline, `kontur verify` and the tests
 // see the same path.
+#include <functional>
 #include <kontur/gcode/block.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/program/corner_blender.hpp>
 #include <kontur/program/move.hpp>
-
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -16,15 +15,16 @@ namespace kontur::program {
 
 /// What reading a program hands on, in program order. Any handler may be empty.
 struct PathHandlers {
-  std::function<void(const Move&)> move;            ///< a move of the path (its id set)
-  std::function<void(const Dwell&)> dwell;          ///< a dwell, after the moves before it
-  std::function<void(const gcode::Block&)> block;   ///< after each block's moves (progress)
+  std::function<void(const Move&)> move;           ///< a move of the path (its id set)
+  std::function<void(const Dwell&)> dwell;         ///< a dwell, after the moves before it
+  std::function<void(const gcode::Block&)> block;  ///< after each block's moves (progress)
 };
 
 class ProgramPath {
-public:
-  /// `blend` false: corners are junctions (`--no-blend`).
-  ProgramPath(const Machine& machine, bool blend);
+ public:
+  /// `blend` false: corners are junctions (`--no-blend`); `speed` estimates how fast a blend runs
+  /// (CornerBlender; without it every corner within its tolerance is blended).
+  ProgramPath(const Machine& machine, bool blend, BlendSpeed speed = {});
   ProgramPath(const ProgramPath&) = delete;
   ProgramPath& operator=(const ProgramPath&) = delete;
 
@@ -36,11 +36,12 @@ public:
   /// Every move of the path, in order: moves()[id].id == id.
   [[nodiscard]] const std::vector<Move>& moves() const noexcept { return moves_; }
 
-private:
+ private:
   void take(std::vector<Move>& ready, const PathHandlers& handlers);
 
   const Machine& machine_;
   bool blend_;
+  BlendSpeed speed_;
   CornerBlender blender_;
   std::vector<Move> moves_;
 };

@@ -5,7 +5,6 @@
 #include <kontur/machine.hpp>
 #include <kontur/program/move.hpp>
 #include <kontur/verify/checker.hpp>
-
 #include <optional>
 #include <string>
 #include <vector>

@@ -3,25 +3,24 @@
 // samples the current segment's profile for the distance along its piece and maps it to a point by
 // the exact arc length (ArcLengthTable::u_after). The per-cycle path: noexcept, allocation-free,
 // bounded, and it never frees (it only marks the segments it has passed; the planner frees them).
+#include <cstddef>
 #include <kontur/axes.hpp>
 #include <kontur/program/move.hpp>
 #include <kontur/trajectory/trajectory.hpp>
-
-#include <cstddef>
 
 namespace kontur::trajectory {
 
 /// One setpoint of the servo loop.
 struct Setpoint {
-  double t_s = 0.0;                         ///< time since the start [s]
+  double t_s = 0.0;                           ///< time since the start [s]
   AxisVector position = AxisVector::Zero(3);  ///< axis positions in the layout's order [mm] / [deg]
-  double v_mm_s = 0.0;                      ///< planned path speed [mm/s]
-  long source_line = 0;                     ///< line of the move it lies on (of the dwell, while dwelling)
-  program::MoveId move = program::no_move;  ///< the move it lies on (no_move: unknown, e.g. read from a file)
+  double v_mm_s = 0.0;                        ///< planned path speed [mm/s]
+  long source_line = 0;                       ///< line of the move it lies on (of the dwell, while dwelling)
+  program::MoveId move = program::no_move;    ///< the move it lies on (no_move: unknown, e.g. read from a file)
 };
 
 class Sampler {
-public:
+ public:
   /// Samples `trajectory` (kept by reference) every `period_s` [s]; positions in `layout`.
   Sampler(Trajectory& trajectory, double period_s, const AxisLayout& layout = AxisLayout::xyz()) noexcept
       : trajectory_(&trajectory), period_(period_s), layout_(layout) {}
@@ -35,7 +34,7 @@ public:
   /// The layout of the setpoints' positions.
   [[nodiscard]] const AxisLayout& layout() const noexcept { return layout_; }
 
-private:
+ private:
   void emit(Setpoint& out, double t, const Vec3& p, double v, long line, program::MoveId move) const noexcept;
 
   Trajectory* trajectory_;

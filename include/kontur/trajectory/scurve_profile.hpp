@@ -16,7 +16,7 @@ struct PathState {
 
 /// A planned profile. sample() is noexcept and allocation-free.
 class ScurveProfile {
-public:
+ public:
   /// The profile from v0 [mm/s] over `distance` [mm] to v1 with peak speed `peak` [mm/s]: the
   /// seven phases' durations [s] with jerk +j, 0, -j, 0 (cruise), -j, 0, +j [mm/s^3]. The end
   /// state is exact (distance, v1, 0, 0) by definition.
@@ -35,7 +35,7 @@ public:
   /// State at time t [s] (clamped to [0, duration]); at the end exactly (distance, v1, 0, 0).
   [[nodiscard]] PathState sample(double t) const noexcept;
 
-private:
+ private:
   std::array<double, 8> start_time_{};  // start of phase k, [7] = end
   std::array<PathState, 8> start_{};    // state at the start of phase k, [7] = end
   std::array<double, 7> jerk_{};        // jerk during phase k

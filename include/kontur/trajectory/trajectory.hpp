@@ -5,31 +5,30 @@
 // segments once the look-ahead has made them final; the Sampler (trajectory/sampler.hpp) reads
 // them at the servo period and only marks what it has passed; the planner frees those
 // (reclaim()), so the per-cycle path never frees memory.
+#include <cstddef>
+#include <deque>
 #include <kontur/geometry/curve.hpp>
 #include <kontur/geometry/length.hpp>
 #include <kontur/program/move.hpp>
 #include <kontur/trajectory/scurve_profile.hpp>
-
-#include <cstddef>
-#include <deque>
 #include <memory>
 
 namespace kontur::trajectory {
 
 /// A stretch of time with one motion law along one piece of one move.
 struct Segment {
-  std::shared_ptr<const Curve> curve;                ///< the move's path [mm]
-  std::shared_ptr<const ArcLengthTable> table;       ///< its arc-length table (s(u), u(s))
-  double u0 = 0.0, u1 = 0.0;                         ///< parameter range of the piece
-  double s0_mm = 0.0, s1_mm = 0.0;                   ///< arc-length range of the piece on the curve [mm]
-  program::MoveId move = program::no_move;           ///< the move it belongs to
-  long source_line = 0;                              ///< that move's line
-  double hold_before_s = 0.0;                        ///< dwell before the motion (a dwell ahead of the first move) [s]
-  long hold_before_line = 0;                         ///< line of that dwell
+  std::shared_ptr<const Curve> curve;           ///< the move's path [mm]
+  std::shared_ptr<const ArcLengthTable> table;  ///< its arc-length table (s(u), u(s))
+  double u0 = 0.0, u1 = 0.0;                    ///< parameter range of the piece
+  double s0_mm = 0.0, s1_mm = 0.0;              ///< arc-length range of the piece on the curve [mm]
+  program::MoveId move = program::no_move;      ///< the move it belongs to
+  long source_line = 0;                         ///< that move's line
+  double hold_before_s = 0.0;                   ///< dwell before the motion (a dwell ahead of the first move) [s]
+  long hold_before_line = 0;                    ///< line of that dwell
   program::MoveId hold_before_move = program::no_move;  ///< the move its setpoints count to (the one before it)
-  double hold_after_s = 0.0;                         ///< dwell after the motion [s]
-  long hold_after_line = 0;                          ///< line of that dwell
-  ScurveProfile profile;                             ///< s(t) from the piece's start [mm], t from the end of the hold before
+  double hold_after_s = 0.0;                            ///< dwell after the motion [s]
+  long hold_after_line = 0;                             ///< line of that dwell
+  ScurveProfile profile;  ///< s(t) from the piece's start [mm], t from the end of the hold before
   /// Duration: hold before, motion, hold after [s].
   [[nodiscard]] double duration() const noexcept { return hold_before_s + profile.duration() + hold_after_s; }
 };
@@ -37,7 +36,7 @@ struct Segment {
 /// The queue of segments between the planner and the sampler. Segments are numbered from 0 in
 /// the order appended (absolute indices, unchanged by reclaim()).
 class Trajectory {
-public:
+ public:
   // Planning side (may allocate and free).
   /// Appends a final segment.
   void append(Segment s) { segments_.push_back(std::move(s)); }
@@ -63,7 +62,7 @@ public:
   /// Segments held (appended and not reclaimed).
   [[nodiscard]] std::size_t held() const noexcept { return segments_.size(); }
 
-private:
+ private:
   std::deque<Segment> segments_;
   std::size_t first_ = 0;        // index of segments_.front()
   std::size_t done_before_ = 0;  // the sampler is past the segments before this index

@@ -5,15 +5,14 @@
 // on the planner. It streams: setpoints are added one at a time, and it keeps only the last few
 // (memory does not grow with the job). The core of `kontur verify`, of the pipeline's summary and
 // of the tests that prove the planner.
+#include <array>
+#include <cstddef>
+#include <functional>
 #include <kontur/axes.hpp>
 #include <kontur/geometry/curve.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/program/move.hpp>
 #include <kontur/trajectory/sampler.hpp>
-
-#include <array>
-#include <cstddef>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -25,30 +24,30 @@ using Sample = trajectory::Setpoint;
 /// The measures of one move: over the setpoints the checker matched to it.
 struct BlockStats {
   long source_line = 0;
-  long samples = 0;                    ///< setpoints on this move (0: shorter than a period, skipped)
-  long first_sample = -1;              ///< index of its first setpoint (-1 if none)
-  long last_sample = -1;               ///< index of its last setpoint (-1 if none)
-  double t_first_s = 0.0;              ///< time of its first setpoint [s] (0 if none)
-  double t_last_s = 0.0;               ///< time of its last setpoint [s] (0 if none)
-  Vec3 first_point = Vec3::Zero();     ///< tool point of its first setpoint [mm]
-  double max_path_error_mm = 0.0;      ///< largest distance of its setpoints from its path [mm]
-  double max_chord_error_mm = 0.0;     ///< largest bow of its chords (both ends on it) [mm]
-  double max_velocity_ratio = 0.0;     ///< over its setpoints k: max over axes of the difference ending at k / limit
-  double max_acceleration_ratio = 0.0; ///< the same for the second difference
-  double max_jerk_ratio = 0.0;         ///< the same for the third difference
+  long samples = 0;                     ///< setpoints on this move (0: shorter than a period, skipped)
+  long first_sample = -1;               ///< index of its first setpoint (-1 if none)
+  long last_sample = -1;                ///< index of its last setpoint (-1 if none)
+  double t_first_s = 0.0;               ///< time of its first setpoint [s] (0 if none)
+  double t_last_s = 0.0;                ///< time of its last setpoint [s] (0 if none)
+  Vec3 first_point = Vec3::Zero();      ///< tool point of its first setpoint [mm]
+  double max_path_error_mm = 0.0;       ///< largest distance of its setpoints from its path [mm]
+  double max_chord_error_mm = 0.0;      ///< largest bow of its chords (both ends on it) [mm]
+  double max_velocity_ratio = 0.0;      ///< over its setpoints k: max over axes of the difference ending at k / limit
+  double max_acceleration_ratio = 0.0;  ///< the same for the second difference
+  double max_jerk_ratio = 0.0;          ///< the same for the third difference
 };
 
 /// What the checker measured at one setpoint, handed to an Observer in time order.
 struct SampleMeasure {
-  std::size_t index = 0;     ///< index of the setpoint
-  double t_s = 0.0;          ///< its time [s]
+  std::size_t index = 0;                      ///< index of the setpoint
+  double t_s = 0.0;                           ///< its time [s]
   AxisVector position = AxisVector::Zero(3);  ///< its axis positions [mm] / [deg], in the layout's order
   /// Backward differences per axis, as the limits are checked: (p_k - p_{k-1}) / T [mm/s], then
   /// the second [mm/s^2] and third [mm/s^3] differences over T^2 and T^3; zero where there are
   /// not enough earlier setpoints (k < 1, 2, 3).
   AxisVector velocity = AxisVector::Zero(3), acceleration = AxisVector::Zero(3), jerk = AxisVector::Zero(3);
   double velocity_ratio = 0.0, acceleration_ratio = 0.0, jerk_ratio = 0.0;  ///< max over axes / limit
-  double path_error_mm = 0.0;   ///< distance from its move's path [mm]
+  double path_error_mm = 0.0;                                               ///< distance from its move's path [mm]
   double chord_error_mm = 0.0;  ///< bow of the path from the chord ending here [mm] (0 at a move change)
   std::size_t move = 0;         ///< index into `moves` of the move it was matched to
 };
@@ -59,19 +58,19 @@ using Observer = std::function<void(const SampleMeasure&)>;
 /// Measured maxima and what they are measured against.
 struct Report {
   long samples = 0;
-  bool finite = true;                  ///< no NaN or infinity in any sample
-  bool uniform_time = true;            ///< every step is one servo period (1e-9 relative)
-  double max_velocity_ratio = 0.0;     ///< max over axes of |dx/dt| / limit (1 = at the limit)
-  double max_acceleration_ratio = 0.0; ///< the same for the second difference
-  double max_jerk_ratio = 0.0;         ///< the same for the third difference
+  bool finite = true;                   ///< no NaN or infinity in any sample
+  bool uniform_time = true;             ///< every step is one servo period (1e-9 relative)
+  double max_velocity_ratio = 0.0;      ///< max over axes of |dx/dt| / limit (1 = at the limit)
+  double max_acceleration_ratio = 0.0;  ///< the same for the second difference
+  double max_jerk_ratio = 0.0;          ///< the same for the third difference
   char worst_velocity_axis = ' ', worst_acceleration_axis = ' ', worst_jerk_axis = ' ';
-  double max_path_error_mm = 0.0;      ///< largest distance of a setpoint from its move's path [mm]
-  double max_chord_error_mm = 0.0;     ///< largest distance of the path from a cycle's chord [mm]
-  double start_error_mm = 0.0;         ///< distance of the first setpoint from the path's start [mm]
-  double end_error_mm = 0.0;           ///< distance of the last setpoint from the path's end [mm]
-  long blends = 0;                     ///< corner blends among the moves
-  double max_blend_deviation_mm = 0.0; ///< largest distance of a blend from its programmed corner's lines [mm]
-  double blend_tolerance_mm = 0.0;     ///< the tolerance of the blend with the largest deviation / tolerance [mm]
+  double max_path_error_mm = 0.0;          ///< largest distance of a setpoint from its move's path [mm]
+  double max_chord_error_mm = 0.0;         ///< largest distance of the path from a cycle's chord [mm]
+  double start_error_mm = 0.0;             ///< distance of the first setpoint from the path's start [mm]
+  double end_error_mm = 0.0;               ///< distance of the last setpoint from the path's end [mm]
+  long blends = 0;                         ///< corner blends among the moves
+  double max_blend_deviation_mm = 0.0;     ///< largest distance of a blend from its programmed corner's lines [mm]
+  double blend_tolerance_mm = 0.0;         ///< the tolerance of the blend with the largest deviation / tolerance [mm]
   double max_blend_deviation_ratio = 0.0;  ///< largest deviation / tolerance of a blend
   /// One per move, in the order of `moves` (empty when the check could not run: no setpoint,
   /// no move, or a setpoint not finite). Their maxima are the maxima above.
@@ -91,13 +90,13 @@ struct Report {
 
 /// The streaming check.
 class Checker {
-public:
+ public:
   /// Checks against the path `moves` (kept by reference: it may grow while setpoints are added, as
   /// long as every setpoint's move is already in it; all of it must be there for setpoints without
   /// a move id), `machine` and the positions' `layout`. `observer` (if set) receives every
   /// setpoint's measures, in order (for plots).
-  Checker(const std::vector<program::Move>& moves, const Machine& machine,
-          const AxisLayout& layout = AxisLayout::xyz(), Observer observer = {});
+  Checker(const std::vector<program::Move>& moves, const Machine& machine, const AxisLayout& layout = AxisLayout::xyz(),
+          Observer observer = {});
   /// The next setpoint, in time order. A setpoint with a move id is matched to that move; one
   /// without (read from a file) to the next move with its source line (setpoints never go back),
   /// and among moves of one line (or where lines do not match) to the nearest of the next few.
@@ -105,7 +104,7 @@ public:
   /// The report, after the last setpoint (the end error, the blends, the worst axes).
   [[nodiscard]] Report finish();
 
-private:
+ private:
   struct Axis {
     const AxisLimits* limits;
     int index;  // in the layout
@@ -121,7 +120,7 @@ private:
   double period_;
   std::vector<Axis> axes_;
   Report r_;
-  bool measuring_ = true;          // false once a setpoint is not finite
+  bool measuring_ = true;                 // false once a setpoint is not finite
   std::array<AxisVector, 3> previous_{};  // positions of setpoints k-1, k-2, k-3
   std::array<Vec3, 1> previous_point_{};  // tool point of setpoint k-1 [mm]
   double t_previous_ = 0.0;
