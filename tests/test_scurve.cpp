@@ -1,12 +1,12 @@
 // The jerk-limited velocity profile of one move: closed-form durations, limits, continuity and an
 // exact end over seeded random inputs.
 #include <gtest/gtest.h>
-#include <kontur/plan/scurve.hpp>
-
-#include "support/random_curves.hpp"
 
 #include <cmath>
+#include <kontur/plan/scurve.hpp>
 #include <random>
+
+#include "support/random_curves.hpp"
 
 namespace kontur::plan {
 namespace {
@@ -42,7 +42,9 @@ TEST(Scurve, LimitsContinuityAndExactEndOnRandomMoves) {
   const auto seed = testing::test_seed();
   const auto count = testing::test_count(2000);
   std::mt19937_64 rng(seed ^ 0x5C0u);
-  auto logu = [&](double a, double b) { return std::exp(std::uniform_real_distribution<double>(std::log(a), std::log(b))(rng)); };
+  auto logu = [&](double a, double b) {
+    return std::exp(std::uniform_real_distribution<double>(std::log(a), std::log(b))(rng));
+  };
   auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
   for (std::uint64_t i = 0; i < count; ++i) {
     const PathLimits l{logu(1, 1000), logu(10, 1e5), logu(100, 1e7)};
@@ -50,14 +52,18 @@ TEST(Scurve, LimitsContinuityAndExactEndOnRandomMoves) {
     const double v0 = uni(0, 1) < 0.3 ? 0.0 : uni(0, l.max_velocity);
     // An end speed reachable from v0 both ways within h.
     double v1 = uni(0, 1) < 0.3 ? 0.0 : uni(0, reachable_velocity(v0, h, l));
-    if (v1 < v0) v1 = std::max(v1, [&] {
-      double lo = 0, hi = v0;  // braking must fit: keep v1 above what braking over h allows
-      for (int k = 0; k < 200; ++k) {
-        const double m = 0.5 * (lo + hi);
-        if (velocity_change_distance(m, v0, l.max_acceleration, l.max_jerk) <= h) hi = m; else lo = m;
-      }
-      return hi;
-    }());
+    if (v1 < v0)
+      v1 = std::max(v1, [&] {
+        double lo = 0, hi = v0;  // braking must fit: keep v1 above what braking over h allows
+        for (int k = 0; k < 200; ++k) {
+          const double m = 0.5 * (lo + hi);
+          if (velocity_change_distance(m, v0, l.max_acceleration, l.max_jerk) <= h)
+            hi = m;
+          else
+            lo = m;
+        }
+        return hi;
+      }());
     const ScurveProfile p = plan_scurve(h, v0, v1, l);
     const std::string at = "case " + std::to_string(i) + " h=" + std::to_string(h) + " v0=" + std::to_string(v0) +
                            " v1=" + std::to_string(v1);
@@ -108,6 +114,36 @@ TEST(Scurve, BrakingDistanceIsNotMonotoneButTheBrakingBoundIs) {
     for (double w = v_after; w <= b; w += 0.25)
       EXPECT_LE(velocity_change_distance(w, b, l.max_acceleration, l.max_jerk), 4.886 * (1 + 1e-9));
   }
+}
+
+// Regression (found against Ruckig on 10^5 random problems): slowing from v0 to v1 where a full
+// stop fits in the length but braking to v1 does not (the braking distance is not monotone in the
+// end speed) kept v1, and the phases covered up to 8.4 % more than the length. Now the profile
+// ends slower than v1 (never faster), and its speed integrates to the length.
+TEST(Scurve, BrakingThatDoesNotFitEndsSlowerAndCoversTheLengthExactly) {
+  std::mt19937_64 rng(20261201);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int cases = 0;
+  for (int trial = 0; trial < 200000 && cases < 300; ++trial) {
+    const PathLimits l{200.0, 500.0 + 4000.0 * unit(rng), 2000.0 + 100000.0 * unit(rng)};
+    const double v0 = l.max_velocity * unit(rng), v1 = v0 * unit(rng);
+    const double stop = velocity_change_distance(0.0, v0, l.max_acceleration, l.max_jerk);
+    const double brake = velocity_change_distance(v1, v0, l.max_acceleration, l.max_jerk);
+    if (!(brake > stop * 1.001)) continue;
+    const double d = stop + (brake - stop) * unit(rng);  // a stop fits, braking to v1 does not
+    ++cases;
+    const ScurveProfile p = plan_scurve(d, v0, v1, l);
+    EXPECT_LE(p.end_velocity(), v1) << "trial " << trial;
+    // The speed integrates to the length (Simpson on a fine grid), and s(t) reaches it only at the end.
+    const int n = 20000;
+    const double T = p.duration(), h = T / n;
+    double integral = 0.0;
+    for (int k = 0; k <= n; ++k) integral += (k == 0 || k == n ? 1 : (k % 2 ? 4 : 2)) * p.sample(k * h).v;
+    integral *= h / 3.0;
+    EXPECT_NEAR(integral, d, 1e-6 * d) << "trial " << trial << " v0 " << v0 << " v1 " << v1;
+    EXPECT_LT(p.sample(0.999 * T).s, d) << "trial " << trial;
+  }
+  EXPECT_GE(cases, 100);
 }
 
 }  // namespace

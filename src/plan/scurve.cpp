@@ -1,7 +1,6 @@
-#include <kontur/plan/scurve.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <kontur/plan/scurve.hpp>
 
 namespace kontur::plan {
 namespace {
@@ -48,12 +47,16 @@ double velocity_change_distance(double va, double vb, double amax, double jmax) 
 
 double reachable_velocity(double v_from, double distance, const PathLimits& l) noexcept {
   if (!(distance > 0.0)) return v_from;
-  if (fits(velocity_change_distance(v_from, l.max_velocity, l.max_acceleration, l.max_jerk), distance)) return l.max_velocity;
+  if (fits(velocity_change_distance(v_from, l.max_velocity, l.max_acceleration, l.max_jerk), distance))
+    return l.max_velocity;
   double lo = v_from, hi = l.max_velocity;
   for (int i = 0; i < kBisections; ++i) {
     const double mid = 0.5 * (lo + hi);
     if (!(mid > lo && mid < hi)) break;
-    if (fits(velocity_change_distance(v_from, mid, l.max_acceleration, l.max_jerk), distance)) lo = mid; else hi = mid;
+    if (fits(velocity_change_distance(v_from, mid, l.max_acceleration, l.max_jerk), distance))
+      lo = mid;
+    else
+      hi = mid;
   }
   return lo;
 }
@@ -73,7 +76,10 @@ double braking_velocity(double v_after, double distance, const PathLimits& l) no
   for (int i = 0; i < kBisections; ++i) {
     const double mid = 0.5 * (lo + hi);
     if (!(mid > lo && mid < hi)) break;
-    if (fits(worst(mid), distance)) lo = mid; else hi = mid;
+    if (fits(worst(mid), distance))
+      lo = mid;
+    else
+      hi = mid;
   }
   return lo;
 }
@@ -86,19 +92,38 @@ ScurveProfile plan_scurve(double distance, double v0, double v1, const PathLimit
   // An end speed that cannot be reached (speeding up) within the distance is lowered; a start
   // speed too high to brake to v1 keeps v1 at the lowest speed reachable by braking.
   if (v1 > v0) v1 = std::min(v1, reachable_velocity(v0, distance, l));
-  if (v0 > v1) v1 = std::max(v1, [&] {
-    // Lowest speed reachable from v0 by braking within the distance. The braking distance is
-    // not monotone near 0 (ending at rest needs the last jerk phase): it falls with the end speed
-    // above about a^2 / 2j and rises below; the bisection below stays right in both parts.
-    if (fits(velocity_change_distance(0.0, v0, amax, jmax), distance)) return 0.0;
-    double lo = 0.0, hi = v0;
-    for (int i = 0; i < kBisections; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      if (!(mid > lo && mid < hi)) break;
-      if (fits(velocity_change_distance(mid, v0, amax, jmax), distance)) hi = mid; else lo = mid;
+  if (v0 > v1 && !fits(velocity_change_distance(v1, v0, amax, jmax), distance)) {
+    // Braking to v1 does not fit. The braking distance is not monotone in the end speed (ending
+    // at rest needs the last jerk phase): it rises from v = 0 to a peak and falls to 0 at v0.
+    if (fits(velocity_change_distance(0.0, v0, amax, jmax), distance)) {
+      // A full stop fits (v1 is on the rising part, or beyond the peak): end at the largest speed
+      // below v1 that fits, slower than asked and never faster (the predicate "fits" is monotone
+      // on [0, v1]: true up to a point on the rising part, false after it).
+      double lo = 0.0, hi = v1;
+      for (int i = 0; i < kBisections; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        if (!(mid > lo && mid < hi)) break;
+        if (fits(velocity_change_distance(mid, v0, amax, jmax), distance))
+          lo = mid;
+        else
+          hi = mid;
+      }
+      v1 = lo;
+    } else {
+      // Not even a stop fits: the lowest speed reachable by braking within the distance (on the
+      // falling part).
+      double lo = 0.0, hi = v0;
+      for (int i = 0; i < kBisections; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        if (!(mid > lo && mid < hi)) break;
+        if (fits(velocity_change_distance(mid, v0, amax, jmax), distance))
+          hi = mid;
+        else
+          lo = mid;
+      }
+      v1 = hi;
     }
-    return hi;
-  }());
+  }
   // Peak speed: the largest vp in [max(v0, v1), vmax] whose two changes fit in the distance.
   auto needed = [&](double vp) {
     return velocity_change_distance(v0, vp, amax, jmax) + velocity_change_distance(v1, vp, amax, jmax);
@@ -113,7 +138,10 @@ ScurveProfile plan_scurve(double distance, double v0, double v1, const PathLimit
     for (int i = 0; i < kBisections; ++i) {
       const double mid = 0.5 * (lo + hi);
       if (!(mid > lo && mid < hi)) break;
-      if (fits(needed(mid), distance)) lo = mid; else hi = mid;
+      if (fits(needed(mid), distance))
+        lo = mid;
+      else
+        hi = mid;
     }
     vp = lo;
     // What the changes leave of the distance (rounding, or the floor when v0 -> v1 alone is
