@@ -150,5 +150,32 @@ TEST(Checker, BlendDeviationAgreesWithTheBlendersOwnMeasure) {
   }
 }
 
+// Regression (issue 12): another planner's setpoints carry block 0 (LinuxCNC's by default). On a
+// path that comes back to a point it passed, the matcher took the later move that starts or ends
+// there and never came back: 25 mm of "path error" on LinuxCNC's full_xy. The nearest point of
+// the whole path is now searched where the matched move is off.
+TEST(Checker, SetpointsWithoutLinesOnAPathThatComesBackStayOnThePath) {
+  const Machine m = default_machine();
+  auto line = [](Vec3 a, Vec3 b, long n) {
+    return program::move_along(std::make_shared<LineSegment>(a, b), 100.0, true, n);
+  };
+  std::vector<program::Move> moves = {line({0, 0, 0}, {10, 0, 0}, 1), line({10, 0, 0}, {10, 10, 0}, 2),
+                                      line({10, 10, 0}, {0, 0, 0}, 3), line({0, 0, 0}, {10, 0, 0}, 4),
+                                      line({10, 0, 0}, {0, 10, 0}, 5)};
+  for (std::size_t i = 0; i < moves.size(); ++i) moves[i].id = static_cast<program::MoveId>(i);
+  std::vector<Sample> samples = testing::plan_and_sample(m, moves);
+  for (Sample& s : samples) {
+    s.move = program::no_move;
+    s.source_line = 0;
+  }
+  const Report r = check(samples, moves, m);
+  EXPECT_LE(r.max_path_error_mm, 1e-9);
+  EXPECT_TRUE(r.passed(m)) << ::testing::PrintToString(r.failures(m));
+  // A setpoint 0.3 mm off the path is measured as 0.3 mm from its nearest point, not from the
+  // move the matcher expected.
+  samples[samples.size() / 3].position[2] += 0.3;
+  EXPECT_NEAR(check(samples, moves, m).max_path_error_mm, 0.3, 1e-9);
+}
+
 }  // namespace
 }  // namespace kontur::verify

@@ -203,6 +203,9 @@ inline constexpr int blend_deviation_samples = 256;
 /// Samples of a blend (plus successive parabolic interpolation around every local maximum) when
 /// the checker measures its distance from the programmed lines, its own way (verify::blend_deviation).
 inline constexpr int check_blend_samples = 256;
+/// A setpoint without a move id (a file) farther than this from the move its line and the
+/// neighbouring moves suggest makes the checker search the nearest point of the whole path [mm].
+inline constexpr double check_resync_mm = 1e-7;
 /// The checker accepts a blend whose deviation exceeds its tolerance by at most this, relative.
 inline constexpr double blend_deviation_relative = 1e-9;
 

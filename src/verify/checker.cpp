@@ -64,6 +64,124 @@ double project(const Curve& c, const std::vector<double>& bp, const Vec3& p, dou
 
 }  // namespace
 
+// A bounding-box tree over the moves: leaves of a few moves, each box holding the move's samples
+// (8 per span and the ends) grown by the longest distance between consecutive samples, which the
+// curve between them cannot leave for any curve the program stage makes (lines, arcs, splines
+// whose spans are sampled densely enough that a span does not turn by more than a right angle
+// between samples).
+struct PathIndex {
+  struct Box {
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+    Vec3 hi = Vec3::Constant(-std::numeric_limits<double>::infinity());
+    void add(const Vec3& p) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    void add(const Box& b) {
+      lo = lo.cwiseMin(b.lo);
+      hi = hi.cwiseMax(b.hi);
+    }
+    [[nodiscard]] double distance(const Vec3& p) const { return (p.cwiseMax(lo).cwiseMin(hi) - p).norm(); }
+  };
+  struct Node {
+    Box box;
+    std::size_t first = 0, count = 0;  // a leaf: order[first .. first + count)
+    std::size_t left = 0, right = 0;   // an inner node (count == 0)
+  };
+  std::vector<Box> boxes;          // per move
+  std::vector<std::size_t> order;  // moves, grouped by leaf
+  std::vector<Node> nodes;         // nodes[0]: the root
+
+  PathIndex(const std::vector<program::Move>& moves,
+            const std::function<const std::vector<double>&(std::size_t)>& spans) {
+    boxes.resize(moves.size());
+    for (std::size_t i = 0; i < moves.size(); ++i) {
+      const Curve& c = *moves[i].curve;
+      const std::vector<double>& bp = spans(i);
+      Box b;
+      Vec3 prev = c.point(c.u_min());
+      double step = 0.0;
+      b.add(prev);
+      for (std::size_t k = 0; k + 1 < bp.size(); ++k)
+        for (int q = 1; q <= 8; ++q) {
+          const Vec3 p = c.point(bp[k] + (bp[k + 1] - bp[k]) * q / 8.0);
+          step = std::max(step, (p - prev).norm());
+          b.add(p);
+          prev = p;
+        }
+      b.lo.array() -= step;
+      b.hi.array() += step;
+      boxes[i] = b;
+    }
+    order.resize(moves.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    if (!order.empty()) build(0, order.size());
+  }
+
+  std::size_t build(std::size_t first, std::size_t count) {
+    const std::size_t id = nodes.size();
+    nodes.emplace_back();
+    Box box, centres;
+    for (std::size_t k = first; k < first + count; ++k) {
+      box.add(boxes[order[k]]);
+      centres.add(0.5 * (boxes[order[k]].lo + boxes[order[k]].hi));
+    }
+    nodes[id].box = box;
+    if (count <= 4) {
+      nodes[id].first = first;
+      nodes[id].count = count;
+      return id;
+    }
+    int axis = 0;
+    (centres.hi - centres.lo).maxCoeff(&axis);
+    const auto mid = static_cast<std::ptrdiff_t>(first + count / 2);
+    const auto begin = order.begin() + static_cast<std::ptrdiff_t>(first);
+    std::nth_element(begin, order.begin() + mid, begin + static_cast<std::ptrdiff_t>(count),
+                     [&](std::size_t a, std::size_t b) {
+                       return boxes[a].lo[axis] + boxes[a].hi[axis] < boxes[b].lo[axis] + boxes[b].hi[axis];
+                     });
+    const std::size_t left = build(first, count / 2);
+    const std::size_t right = build(first + count / 2, count - count / 2);
+    nodes[id].left = left;
+    nodes[id].right = right;
+    return id;
+  }
+};
+
+Checker::~Checker() = default;
+
+void Checker::nearest_on_path(const Vec3& p, std::size_t& m, double& u, double& d) {
+  if (!index_)
+    index_ = std::make_unique<PathIndex>(moves_,
+                                         [this](std::size_t i) -> const std::vector<double>& { return spans_of(i); });
+  const PathIndex& ix = *index_;
+  std::vector<std::size_t> stack = {0};
+  while (!stack.empty()) {
+    const PathIndex::Node& node = ix.nodes[stack.back()];
+    stack.pop_back();
+    if (!(node.box.distance(p) < d)) continue;
+    if (node.count == 0) {
+      // the nearer child last, so that it is searched first
+      const bool left_nearer = ix.nodes[node.left].box.distance(p) <= ix.nodes[node.right].box.distance(p);
+      stack.push_back(left_nearer ? node.right : node.left);
+      stack.push_back(left_nearer ? node.left : node.right);
+      continue;
+    }
+    for (std::size_t k = node.first; k < node.first + node.count; ++k) {
+      const std::size_t n = ix.order[k];
+      if (!(ix.boxes[n].distance(p) < d)) continue;
+      const Curve& c = *moves_[n].curve;
+      const double un = project(c, spans_of(n), p, c.u_min());
+      const double dn = (c.point(un) - p).norm();
+      if (dn < d) {
+        m = n;
+        u = un;
+        d = dn;
+      }
+    }
+  }
+}
+
 double blend_deviation(const Curve& c, const program::ProgrammedCorner& pc) {
   auto dev = [&](double u) {
     const Vec3 p = c.point(u);
@@ -199,6 +317,9 @@ std::size_t Checker::match(const Sample& s, const Vec3& p, double& u, double& d)
       d = dn;
     }
   }
+  // Off the moves the line suggests (another planner's blends, block 0, a path that comes back to
+  // a point it passed): the nearest point of the whole path.
+  if (d > tolerances::check_resync_mm) nearest_on_path(p, m, u, d);
   return m;
 }
 

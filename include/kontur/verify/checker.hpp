@@ -13,6 +13,7 @@
 #include <kontur/machine.hpp>
 #include <kontur/program/move.hpp>
 #include <kontur/trajectory/sampler.hpp>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -88,9 +89,14 @@ struct Report {
 /// interpolation around every local maximum of the samples.
 [[nodiscard]] double blend_deviation(const Curve& curve, const program::ProgrammedCorner& corner);
 
+struct PathIndex;
+
 /// The streaming check.
 class Checker {
  public:
+  ~Checker();
+  Checker(const Checker&) = delete;
+  Checker& operator=(const Checker&) = delete;
   /// Checks against the path `moves` (kept by reference: it may grow while setpoints are added, as
   /// long as every setpoint's move is already in it; all of it must be there for setpoints without
   /// a move id), `machine` and the positions' `layout`. `observer` (if set) receives every
@@ -98,8 +104,12 @@ class Checker {
   Checker(const std::vector<program::Move>& moves, const Machine& machine, const AxisLayout& layout = AxisLayout::xyz(),
           Observer observer = {});
   /// The next setpoint, in time order. A setpoint with a move id is matched to that move; one
-  /// without (read from a file) to the next move with its source line (setpoints never go back),
-  /// and among moves of one line (or where lines do not match) to the nearest of the next few.
+  /// without (read from a file, possibly another planner's, with block 0 or its own blends) to
+  /// the next move with its source line, and among moves of one line (or where lines are not
+  /// known) to the nearest of the next few. Where that move is farther than
+  /// tolerances::check_resync_mm, the nearest point of the whole path is searched (a bounding-box
+  /// tree over the moves): its distance is the setpoint's path error, and the matching goes on
+  /// from that move (a path that comes back to a point it passed cannot lose the matching).
   void add(const Sample& s);
   /// The report, after the last setpoint (the end error, the blends, the worst axes).
   [[nodiscard]] Report finish();
@@ -112,6 +122,8 @@ class Checker {
   };
   [[nodiscard]] const std::vector<double>& spans_of(std::size_t move);
   [[nodiscard]] std::size_t match(const Sample& s, const Vec3& p, double& u, double& d);
+  // The nearest point of the whole path to p, if nearer than d: updates m, u, d.
+  void nearest_on_path(const Vec3& p, std::size_t& m, double& u, double& d);
 
   const std::vector<program::Move>& moves_;
   const Machine& machine_;
@@ -126,6 +138,7 @@ class Checker {
   double t_previous_ = 0.0;
   Vec3 last_point_ = Vec3::Zero();
   std::vector<std::vector<double>> breakpoints_;  // per move, computed once (the projection samples every span)
+  std::unique_ptr<PathIndex> index_;              // built on the first setpoint that needs it
   std::size_t m_ = 0, m_prev_ = 0;
   double u_prev_ = 0.0;
   SampleMeasure sm_;
