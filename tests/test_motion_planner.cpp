@@ -1,21 +1,21 @@
 // Moves to setpoints: the limits hold on the setpoints themselves (finite differences), the path
 // is continuous, corners are slow, tangent junctions are not, and the end is reached exactly.
 #include <gtest/gtest.h>
+
+#include <cmath>
 #include <kontur/geometry/helix_arc.hpp>
 #include <kontur/geometry/line_segment.hpp>
 #include <kontur/plan/motion_planner.hpp>
-
-#include "support/planner_run.hpp"
-
-#include <cmath>
 #include <numbers>
 #include <random>
+
+#include "support/planner_run.hpp"
 
 namespace kontur::plan {
 namespace {
 
-using trajectory::Setpoint;
 using program::Move;
+using trajectory::Setpoint;
 
 struct RunResult {
   std::vector<Setpoint> points;
@@ -46,7 +46,8 @@ Usage usage(const RunResult& r, const Machine& m) {
   for (std::size_t k = 3; k < p.size(); ++k) {
     for (int i = 0; i < 3; ++i) {
       const AxisLimits& ax = m.axes[static_cast<std::size_t>(i)];
-      const double x0 = p[k].position[i], x1 = p[k - 1].position[i], x2 = p[k - 2].position[i], x3 = p[k - 3].position[i];
+      const double x0 = p[k].position[i], x1 = p[k - 1].position[i], x2 = p[k - 2].position[i],
+                   x3 = p[k - 3].position[i];
       u.v = std::max(u.v, std::abs(x0 - x1) / T / ax.max_velocity);
       u.a = std::max(u.a, std::abs(x0 - 2 * x1 + x2) / (T * T) / ax.max_acceleration);
       u.j = std::max(u.j, std::abs(x0 - 3 * x1 + 3 * x2 - x3) / (T * T * T) / ax.max_jerk);
@@ -83,7 +84,7 @@ TEST(MotionPlanner, SquareCornersAreTakenWithinTheLimits) {
   const Machine m = default_machine();
   const double F = 150.0;
   const RunResult r = run(m, {line({0, 0, 0}, {50, 0, 0}, F), line({50, 0, 0}, {50, 50, 0}, F),
-                        line({50, 50, 0}, {0, 50, 0}, F), line({0, 50, 0}, {0, 0, 0}, F)});
+                              line({50, 50, 0}, {0, 50, 0}, F), line({0, 50, 0}, {0, 0, 0}, F)});
   const Usage u = usage(r, m);
   EXPECT_LE(u.v, 1.0 + 1e-6);
   EXPECT_LE(u.a, 1.0 + 1e-6);
@@ -112,7 +113,7 @@ TEST(MotionPlanner, TangentLineArcLineKeepsItsSpeed) {
   const auto arc = std::make_shared<HelixArc>(f, R, std::numbers::pi / 2);
   const Vec3 arc_end = arc->point(1.0);
   const RunResult r = run(m, {line({0, 0, 0}, {50, 0, 0}, 100.0), program::move_along(arc, 100.0, false, 2),
-                        line(arc_end, arc_end + Vec3(0, 50, 0), 100.0)});
+                              line(arc_end, arc_end + Vec3(0, 50, 0), 100.0)});
   // Through both tangent junctions the speed stays up (no stop).
   double v_min_mid = 1e9;
   for (const auto& p : r.points)
@@ -160,7 +161,8 @@ TEST(MotionPlanner, StreamingGivesTheSameSetpointsAsPlanningAtOnce) {
     ASSERT_EQ(streamed.points.size(), expected.size()) << "trial " << trial;
     for (std::size_t k = 0; k < expected.size(); ++k) {
       // (the same times up to rounding: t - d + T against t + T - d)
-      ASSERT_LE((streamed.points[k].position - expected[k].position).norm(), 1e-9) << "trial " << trial << " setpoint " << k;
+      ASSERT_LE((streamed.points[k].position - expected[k].position).norm(), 1e-9)
+          << "trial " << trial << " setpoint " << k;
       ASSERT_EQ(streamed.points[k].source_line, expected[k].source_line);
     }
     // And consecutive setpoints never jump: at most the largest feed times a period.
@@ -198,6 +200,29 @@ TEST(MotionPlanner, DwellHoldsThePositionForItsTime) {
   r.points = pts;
   const Usage u = usage(r, m);
   EXPECT_LE(u.j, 1.0 + 1e-6);
+}
+
+// Issue 12: pieces joined smoothly (here collinear lines) are one chain with one S-curve, so the
+// speed rises across their junctions instead of every short line starting and ending at zero
+// acceleration. 200 collinear lines of 0.05 mm take the time of one 10 mm line, within the limits.
+TEST(MotionPlanner, CollinearShortLinesRunAsFastAsOneLine) {
+  const Machine m = default_machine();
+  std::vector<Move> short_lines;
+  for (int i = 0; i < 200; ++i) short_lines.push_back(line({0.05 * i, 0, 0}, {0.05 * (i + 1), 0, 0}, 150.0, i + 1));
+  const RunResult chained = run(m, short_lines);
+  const RunResult single = run(m, {line({0, 0, 0}, {10, 0, 0}, 150.0, 1)});
+  EXPECT_NEAR(chained.points.back().t_s, single.points.back().t_s, 0.01 * single.points.back().t_s);
+  EXPECT_EQ(Vec3(chained.points.back().position), Vec3(10, 0, 0));
+  const Usage u = usage(chained, m);
+  EXPECT_LE(u.v, 1.0 + 1e-6);
+  EXPECT_LE(u.a, 1.0 + 1e-6);
+  EXPECT_LE(u.j, 1.0 + 1e-6);
+  // Every line gets setpoints in order, and none is skipped by more than a period's travel.
+  for (std::size_t k = 1; k < chained.points.size(); ++k) {
+    ASSERT_GE(chained.points[k].source_line, chained.points[k - 1].source_line);
+    ASSERT_LE((chained.points[k].position - chained.points[k - 1].position).norm(),
+              150.0 * m.servo_period_s * (1 + 1e-9));
+  }
 }
 
 }  // namespace

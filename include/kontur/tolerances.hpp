@@ -1,4 +1,5 @@
 #pragma once
+#include <cstddef>
 // Every numerical tolerance of Kontur, in one place, with what it means and how it relates to
 // the others. Lengths are in [mm] unless stated; "relative" means relative to the quantity's
 // own scale (a curve's extent, a length, a parameter range).
@@ -184,6 +185,9 @@ inline constexpr double plan_sample_margin = 0.05;
 inline constexpr double plan_limit_safety = 1e-4;
 /// Neighbouring spans of a curve whose speed caps are within this factor are planned as one piece.
 inline constexpr double plan_piece_cap_ratio = 1.5;
+/// Most pieces in one chain (pieces joined smoothly, planned with one S-curve): bounds the delay
+/// before the look-ahead sees them.
+inline constexpr std::size_t plan_chain_max_pieces = 256;
 
 // ---- corner blending within the G64 tolerance (plan/corner_blend.hpp)
 /// Lines shorter than this are not blended [mm] (their corners stay junctions): a blend on them

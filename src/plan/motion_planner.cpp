@@ -1,9 +1,8 @@
+#include <algorithm>
+#include <cmath>
 #include <kontur/geometry/differential.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/tolerances.hpp>
-
-#include <algorithm>
-#include <cmath>
 #include <limits>
 
 namespace kontur::plan {
@@ -89,14 +88,14 @@ void MotionPlanner::push(const program::Move& move) {
   if (!(length > 0.0)) return;
   const Curve& c = *move.curve;
   const std::vector<MovePiece> pieces = split_move(c, *table, move.feed_mm_s, machine_);
-  // The junction with the move before limits that move's end speed and sets its jerk; the move
-  // is still the window's last (never released before the next one arrives or the program ends).
-  Junction in{std::numeric_limits<double>::infinity(), 0.0};
-  if (last_end_ && !last_exact_stop_ && !pending_.empty()) {
+  // The junction with the move before (still the open chain's last piece unless it stopped).
+  Junction in{0.0, 0.0};  // at rest
+  if (!open_.pieces.empty()) {
     in = junction(*last_end_, c.derivatives(c.u_min(), 2), machine_);
-    lookahead_.limit_last_end_velocity(in.velocity);
+    settle_last(in.jerk_share);
+    if (!(in.jerk_share == 0.0 && in.velocity == std::numeric_limits<double>::infinity()))
+      close_chain(in.velocity);  // a corner or a curvature jump: the speed there is limited
   }
-  settle_last(in.jerk_share);
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const MovePiece& p = pieces[i];
     const bool last = i + 1 == pieces.size();
@@ -113,6 +112,7 @@ void MotionPlanner::push(const program::Move& move) {
     piece.geometry = p.geometry;
     piece.feed_mm_s = move.feed_mm_s;
     piece.start_share = i == 0 ? in.jerk_share : pieces[i - 1].end.jerk_share;
+    piece.length_mm = p.s1_mm - p.s0_mm;
     if (initial_hold_s_ > 0.0) {
       seg.hold_before_s = initial_hold_s_;
       seg.hold_before_line = initial_hold_line_;
@@ -120,64 +120,135 @@ void MotionPlanner::push(const program::Move& move) {
       seg.hold_before_move = last_move_ != program::no_move ? last_move_ : move.id;
       initial_hold_s_ = 0.0;
     }
-    MoveConstraint mc;
-    mc.length_mm = p.s1_mm - p.s0_mm;
-    // The last piece's end junction is not known yet: it is planned with the largest share a
-    // junction may take, and raised (settle_last) when the next move arrives. Limits may only rise
-    // after moves before were released on them (they were planned to brake within the lower ones).
-    mc.limits = path_limits(p.geometry, mc.length_mm, move.feed_mm_s, machine_,
-                            std::max({piece.start_share, last ? tolerances::plan_smooth_junction_jerk_share : 0.0,
-                                      last ? 0.0 : p.end.jerk_share}));
-    piece.cap_mm_s = mc.limits.max_velocity;
-    mc.max_end_velocity = last ? (move.exact_stop ? 0.0 : mc.limits.max_velocity)
-                               : std::min(mc.limits.max_velocity, p.end.velocity);
-    pending_.push_back(std::move(piece));
-    lookahead_.push(mc);
+    // The cap at the largest share a junction may take (the end of the last piece is not known
+    // yet); the limits become final when its end junction is known (settle_last).
+    piece.limits = path_limits(p.geometry, piece.length_mm, move.feed_mm_s, machine_,
+                               std::max({piece.start_share, last ? tolerances::plan_smooth_junction_jerk_share : 0.0,
+                                         last ? 0.0 : p.end.jerk_share}));
+    piece.cap_mm_s = piece.limits.max_velocity;
+    add_piece(std::move(piece));
+    if (!last) {
+      settle_last(p.end.jerk_share);
+      if (!(p.end.jerk_share == 0.0 && p.end.velocity == std::numeric_limits<double>::infinity()))
+        close_chain(p.end.velocity);
+    }
   }
   last_end_ = c.derivatives_left(c.u_max(), 2);
   last_exact_stop_ = move.exact_stop;
   last_move_ = move.id;
+  if (move.exact_stop) {
+    settle_last(0.0);
+    close_chain(0.0);
+  }
   release_ready();
 }
 
+void MotionPlanner::add_piece(Piece piece) {
+  if (!open_.pieces.empty()) {
+    const double lo = std::min(open_.min_cap_mm_s, piece.cap_mm_s), hi = std::max(open_.max_cap_mm_s, piece.cap_mm_s);
+    // Pieces of different speeds each keep their own cap; a chain is bounded in length.
+    if (hi > tolerances::plan_piece_cap_ratio * lo || open_.pieces.size() >= tolerances::plan_chain_max_pieces)
+      close_chain(std::numeric_limits<double>::infinity());
+  }
+  if (open_.pieces.empty()) {
+    open_.min_cap_mm_s = open_.max_cap_mm_s = piece.cap_mm_s;
+  } else {
+    open_.min_cap_mm_s = std::min(open_.min_cap_mm_s, piece.cap_mm_s);
+    open_.max_cap_mm_s = std::max(open_.max_cap_mm_s, piece.cap_mm_s);
+  }
+  open_.pieces.push_back(std::move(piece));
+}
+
 void MotionPlanner::settle_last(double end_share) {
-  if (pending_.empty()) return;
-  const Piece& prev = pending_.back();
-  MoveConstraint& mc = lookahead_.back();
-  const PathLimits l = path_limits_at(prev.geometry, prev.cap_mm_s, machine_, std::max(prev.start_share, end_share));
-  mc.limits.max_jerk = std::max(mc.limits.max_jerk, l.max_jerk);
+  if (open_.pieces.empty()) return;
+  Piece& p = open_.pieces.back();
+  const PathLimits l = path_limits_at(p.geometry, p.cap_mm_s, machine_, std::max(p.start_share, end_share));
+  p.limits.max_jerk = std::max(p.limits.max_jerk, l.max_jerk);
+}
+
+void MotionPlanner::close_chain(double end_velocity) {
+  if (open_.pieces.empty()) return;
+  MoveConstraint mc;
+  mc.limits = open_.pieces.front().limits;
+  for (const Piece& p : open_.pieces) {
+    mc.length_mm += p.length_mm;
+    mc.limits.max_velocity = std::min(mc.limits.max_velocity, p.limits.max_velocity);
+    mc.limits.max_acceleration = std::min(mc.limits.max_acceleration, p.limits.max_acceleration);
+    mc.limits.max_jerk = std::min(mc.limits.max_jerk, p.limits.max_jerk);
+  }
+  mc.max_end_velocity = std::min(mc.limits.max_velocity, end_velocity);
+  lookahead_.push(mc);
+  pending_.push_back(std::move(open_));
+  open_ = Chain{};
 }
 
 void MotionPlanner::dwell(double seconds, long source_line) {
   if (finished_ || !(seconds > 0.0)) return;
-  if (pending_.empty()) {  // before the first move, or after moves already released at rest
+  if (!open_.pieces.empty()) {
+    settle_last(0.0);  // it ends at rest: no junction
+    close_chain(0.0);
+  }
+  last_exact_stop_ = true;  // the next move starts from rest
+  if (pending_.empty()) {   // before the first move, or after moves already released at rest
     initial_hold_s_ += seconds;
     initial_hold_line_ = source_line;
     return;
   }
-  trajectory::Segment& p = pending_.back().segment;
+  trajectory::Segment& p = pending_.back().pieces.back().segment;
   p.hold_after_s += seconds;
   p.hold_after_line = source_line;
   lookahead_.limit_last_end_velocity(0.0);
-  settle_last(0.0);  // it ends at rest: no junction
-  last_exact_stop_ = true;  // the next move starts from rest
 }
 
 void MotionPlanner::finish() {
-  if (!finished_) settle_last(0.0);  // the last move ends at rest
+  if (!finished_ && !open_.pieces.empty()) {
+    settle_last(0.0);  // the last move ends at rest
+    close_chain(0.0);
+  }
   finished_ = true;
   lookahead_.finish();
   release_ready();
 }
 
+namespace {
+
+// The time [s] at which `profile` has covered `s_mm` (s(t) does not decrease): bisection.
+double time_at(const ScurveProfile& profile, double s_mm) noexcept {
+  double lo = 0.0, hi = profile.duration();
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi)) break;
+    if (profile.sample(mid).s < s_mm)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return hi;
+}
+
+}  // namespace
+
 void MotionPlanner::release_ready() {
   while (lookahead_.ready()) {
-    Piece p = std::move(pending_.front());
+    Chain chain = std::move(pending_.front());
     pending_.pop_front();
-    p.segment.profile = lookahead_.pop();
-    out_->append(std::move(p.segment));
+    const ScurveProfile profile = lookahead_.pop();
+    // Each piece runs through its window of the chain's profile.
+    double offset = 0.0, t0 = 0.0;
+    for (std::size_t k = 0; k < chain.pieces.size(); ++k) {
+      trajectory::Segment& seg = chain.pieces[k].segment;
+      const double next = offset + chain.pieces[k].length_mm;
+      const double t1 = k + 1 == chain.pieces.size() ? profile.duration() : std::max(t0, time_at(profile, next));
+      seg.profile = profile;
+      seg.window_t0_s = t0;
+      seg.window_t1_s = t1;
+      seg.window_s0_mm = offset;
+      out_->append(std::move(seg));
+      offset = next;
+      t0 = t1;
+    }
   }
-  if (finished_ && pending_.empty()) out_->close();
+  if (finished_ && pending_.empty() && open_.pieces.empty()) out_->close();
 }
 
 }  // namespace kontur::plan

@@ -25,7 +25,7 @@ bool Sampler::next(Setpoint& out) noexcept {
     s_ = m.s0_mm;
     t_move_ = 0.0;
     const bool holding = m.hold_before_s > 0.0;
-    emit(out, 0.0, m.curve->point(u_), holding ? 0.0 : m.profile.sample(0.0).v,
+    emit(out, 0.0, m.curve->point(u_), holding ? 0.0 : m.profile.sample(m.window_t0_s).v,
          holding ? m.hold_before_line : m.source_line, holding ? m.hold_before_move : m.move);
     return true;
   }
@@ -60,14 +60,15 @@ bool Sampler::next(Setpoint& out) noexcept {
       line = m.hold_before_line;
       move = m.hold_before_move;
     }
-  } else if (t_profile >= m.profile.duration()) {
-    st.s = m.profile.distance();  // dwelling after the segment
+  } else if (t_profile >= m.motion_s()) {
+    st.s = m.s1_mm - m.s0_mm;  // dwelling after the segment
     line = m.hold_after_line;
   } else {
-    st = m.profile.sample(t_profile);
+    st = m.profile.sample(m.window_t0_s + t_profile);
+    st.s -= m.window_s0_mm;
   }
   const double s_target = m.s0_mm + st.s;
-  if (st.s >= m.profile.distance() || s_target >= m.s1_mm) {
+  if (st.s >= m.s1_mm - m.s0_mm || s_target >= m.s1_mm) {
     u_ = m.u1;
   } else if (s_target > s_) {
     // (u_after starts from the Taylor series of u(s) at u_; no hint needed: it falls back to the

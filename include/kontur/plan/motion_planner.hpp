@@ -5,14 +5,13 @@
 // jerk-limited profiles, and each piece whose profile is final is appended to the trajectory as a
 // time segment (trajectory/trajectory.hpp), which a trajectory::Sampler turns into setpoints.
 // Planning allocates; sampling does not.
+#include <deque>
 #include <kontur/geometry/curve.hpp>
 #include <kontur/geometry/length.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/plan/lookahead.hpp>
 #include <kontur/program/move.hpp>
 #include <kontur/trajectory/trajectory.hpp>
-
-#include <deque>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -21,10 +20,10 @@ namespace kontur::plan {
 
 /// A stretch of one move planned with one profile.
 struct MovePiece {
-  double u0 = 0.0, u1 = 0.0;          ///< parameter range on the move's curve
-  double s0_mm = 0.0, s1_mm = 0.0;    ///< arc-length range on the curve [mm]
-  PathGeometry geometry;              ///< bounds of its geometry
-  Junction end;                       ///< the junction with the next piece of the same move
+  double u0 = 0.0, u1 = 0.0;        ///< parameter range on the move's curve
+  double s0_mm = 0.0, s1_mm = 0.0;  ///< arc-length range on the curve [mm]
+  PathGeometry geometry;            ///< bounds of its geometry
+  Junction end;                     ///< the junction with the next piece of the same move
 };
 
 /// Cuts a move into pieces: at every breakpoint where tangent or curvature jump (a junction that
@@ -34,7 +33,7 @@ struct MovePiece {
                                                 const Machine& machine);
 
 class MotionPlanner {
-public:
+ public:
   /// Plans on `machine` and appends the final segments to `out` (kept by reference).
   MotionPlanner(const Machine& machine, trajectory::Trajectory& out);
 
@@ -48,24 +47,40 @@ public:
   /// Servo period [s].
   [[nodiscard]] double period_s() const noexcept { return period_; }
 
-private:
+ private:
+  // A piece of a move with its limits, waiting in a chain.
   struct Piece {
-    trajectory::Segment segment;  // what the sampler gets (its profile set on release)
-    // what the limits were computed from (the share may rise when the next junction is known)
+    trajectory::Segment segment;  // what the sampler gets (its profile and window set on release)
     PathGeometry geometry;
     double feed_mm_s = 0.0;
-    double start_share = 0.0;
-    double cap_mm_s = 0.0;       // its speed cap [mm/s]
+    double start_share = 0.0;  // jerk share of the junction at its start
+    double length_mm = 0.0;
+    PathLimits limits;      // final once its end junction is known
+    double cap_mm_s = 0.0;  // its speed cap [mm/s] (at the largest junction share)
   };
-  void release_ready();
-  // The end junction of the last move pushed is known (share of the jerk it takes): raise its jerk.
+  // Consecutive pieces joined by smooth junctions (tangent and curvature continuous) with similar
+  // speed caps: one entry of the look-ahead, one S-curve over their summed length with the
+  // smallest of their limits, so that the speed can change across the junctions between them
+  // (acceleration carried through) instead of every piece starting and ending at zero
+  // acceleration.
+  struct Chain {
+    std::vector<Piece> pieces;
+    double min_cap_mm_s = 0.0, max_cap_mm_s = 0.0;
+  };
+  // Adds a piece to the open chain (closing it first if the piece's cap does not fit).
+  void add_piece(Piece piece);
+  // The open chain's last piece gets its end junction's share; its limits become final.
   void settle_last(double end_share);
+  // Closes the open chain (its end speed at most `end_velocity`) and hands it to the look-ahead.
+  void close_chain(double end_velocity);
+  void release_ready();
 
   Machine machine_;
   double period_;
   trajectory::Trajectory* out_;
   Lookahead lookahead_;
-  std::deque<Piece> pending_;   // pieces in the look-ahead window, in order
+  std::deque<Chain> pending_;            // closed chains in the look-ahead window, in order
+  Chain open_;                           // the chain being built (its last piece's end not yet known)
   std::optional<Derivatives> last_end_;  // end of the last move pushed (for the junction)
   bool last_exact_stop_ = true;          // the last move pushed ends at rest
   double initial_hold_s_ = 0.0;          // dwell before the next move, with nothing pending [s]

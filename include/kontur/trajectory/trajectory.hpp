@@ -28,9 +28,16 @@ struct Segment {
   program::MoveId hold_before_move = program::no_move;  ///< the move its setpoints count to (the one before it)
   double hold_after_s = 0.0;                            ///< dwell after the motion [s]
   long hold_after_line = 0;                             ///< line of that dwell
-  ScurveProfile profile;  ///< s(t) from the piece's start [mm], t from the end of the hold before
+  /// s(t) [mm] of the chain of pieces this one belongs to (pieces joined smoothly share one
+  /// profile, so the speed changes across their junctions); this piece runs through its window.
+  ScurveProfile profile;
+  double window_t0_s = 0.0;   ///< start of the piece's window in the profile's time [s]
+  double window_t1_s = 0.0;   ///< end of the window [s]
+  double window_s0_mm = 0.0;  ///< the profile's distance at the window's start [mm]
+  /// Duration of the motion: the window [s].
+  [[nodiscard]] double motion_s() const noexcept { return window_t1_s - window_t0_s; }
   /// Duration: hold before, motion, hold after [s].
-  [[nodiscard]] double duration() const noexcept { return hold_before_s + profile.duration() + hold_after_s; }
+  [[nodiscard]] double duration() const noexcept { return hold_before_s + motion_s() + hold_after_s; }
 };
 
 /// The queue of segments between the planner and the sampler. Segments are numbered from 0 in
