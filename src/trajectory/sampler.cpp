@@ -59,6 +59,8 @@ bool Sampler::next(Setpoint& out) noexcept {
     if (m.hold_before_s > 0.0) {  // dwelling before the segment
       line = m.hold_before_line;
       move = m.hold_before_move;
+    } else {  // exactly at its start: the speed of its window's start (a chain's may be > 0)
+      st.v = m.profile.sample(m.window_t0_s).v;
     }
   } else if (t_profile >= m.motion_s()) {
     st.s = m.s1_mm - m.s0_mm;  // dwelling after the segment
