@@ -125,7 +125,6 @@ void MotionPlanner::push(const program::Move& move) {
     piece.limits = path_limits(p.geometry, piece.length_mm, move.feed_mm_s, machine_,
                                std::max({piece.start_share, last ? tolerances::plan_smooth_junction_jerk_share : 0.0,
                                          last ? 0.0 : p.end.jerk_share}));
-    piece.cap_mm_s = piece.limits.max_velocity;
     add_piece(std::move(piece));
     if (!last) {
       settle_last(p.end.jerk_share);
@@ -145,16 +144,17 @@ void MotionPlanner::push(const program::Move& move) {
 
 void MotionPlanner::add_piece(Piece piece) {
   if (!open_.pieces.empty()) {
-    const double lo = std::min(open_.min_cap_mm_s, piece.cap_mm_s), hi = std::max(open_.max_cap_mm_s, piece.cap_mm_s);
+    const double lo = std::min(open_.min_cap_mm_s, piece.limits.max_velocity),
+                 hi = std::max(open_.max_cap_mm_s, piece.limits.max_velocity);
     // Pieces of different speeds each keep their own cap; a chain is bounded in length.
     if (hi > tolerances::plan_piece_cap_ratio * lo || open_.pieces.size() >= tolerances::plan_chain_max_pieces)
       close_chain(std::numeric_limits<double>::infinity());
   }
   if (open_.pieces.empty()) {
-    open_.min_cap_mm_s = open_.max_cap_mm_s = piece.cap_mm_s;
+    open_.min_cap_mm_s = open_.max_cap_mm_s = piece.limits.max_velocity;
   } else {
-    open_.min_cap_mm_s = std::min(open_.min_cap_mm_s, piece.cap_mm_s);
-    open_.max_cap_mm_s = std::max(open_.max_cap_mm_s, piece.cap_mm_s);
+    open_.min_cap_mm_s = std::min(open_.min_cap_mm_s, piece.limits.max_velocity);
+    open_.max_cap_mm_s = std::max(open_.max_cap_mm_s, piece.limits.max_velocity);
   }
   open_.pieces.push_back(std::move(piece));
 }
@@ -162,7 +162,7 @@ void MotionPlanner::add_piece(Piece piece) {
 void MotionPlanner::settle_last(double end_share) {
   if (open_.pieces.empty()) return;
   Piece& p = open_.pieces.back();
-  const PathLimits l = path_limits_at(p.geometry, p.cap_mm_s, machine_, std::max(p.start_share, end_share));
+  const PathLimits l = path_limits_at(p.geometry, p.limits.max_velocity, machine_, std::max(p.start_share, end_share));
   p.limits.max_jerk = std::max(p.limits.max_jerk, l.max_jerk);
 }
 
@@ -210,24 +210,6 @@ void MotionPlanner::finish() {
   release_ready();
 }
 
-namespace {
-
-// The time [s] at which `profile` has covered `s_mm` (s(t) does not decrease): bisection.
-double time_at(const ScurveProfile& profile, double s_mm) noexcept {
-  double lo = 0.0, hi = profile.duration();
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    if (!(mid > lo && mid < hi)) break;
-    if (profile.sample(mid).s < s_mm)
-      lo = mid;
-    else
-      hi = mid;
-  }
-  return hi;
-}
-
-}  // namespace
-
 void MotionPlanner::release_ready() {
   while (lookahead_.ready()) {
     Chain chain = std::move(pending_.front());
@@ -238,7 +220,7 @@ void MotionPlanner::release_ready() {
     for (std::size_t k = 0; k < chain.pieces.size(); ++k) {
       trajectory::Segment& seg = chain.pieces[k].segment;
       const double next = offset + chain.pieces[k].length_mm;
-      const double t1 = k + 1 == chain.pieces.size() ? profile.duration() : std::max(t0, time_at(profile, next));
+      const double t1 = k + 1 == chain.pieces.size() ? profile.duration() : std::max(t0, profile.time_at(next));
       seg.profile = profile;
       seg.window_t0_s = t0;
       seg.window_t1_s = t1;

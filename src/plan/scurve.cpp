@@ -29,6 +29,25 @@ Change change_phases(double va, double vb, double amax, double jmax) noexcept {
 
 constexpr int kBisections = 200;  // bounded; stops earlier when the interval cannot shrink
 
+// Bisection of [lo, hi] on a predicate true on a lower part and false above it: the last point
+// found true and the first found false. Bounded by kBisections; stops when the interval cannot
+// shrink.
+struct Bracket {
+  double lo, hi;
+};
+template <class LowerPart>
+Bracket bisect(double lo, double hi, LowerPart in_lower_part) noexcept {
+  for (int i = 0; i < kBisections; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi)) break;
+    if (in_lower_part(mid))
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return {lo, hi};
+}
+
 // Distances that agree to rounding count as equal: speeds handed from one plan to the next may
 // differ in the last bits, and a braking distance 1e-16 mm over the move's length must not turn
 // a feasible stop into an arrival at speed.
@@ -49,16 +68,10 @@ double reachable_velocity(double v_from, double distance, const PathLimits& l) n
   if (!(distance > 0.0)) return v_from;
   if (fits(velocity_change_distance(v_from, l.max_velocity, l.max_acceleration, l.max_jerk), distance))
     return l.max_velocity;
-  double lo = v_from, hi = l.max_velocity;
-  for (int i = 0; i < kBisections; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    if (!(mid > lo && mid < hi)) break;
-    if (fits(velocity_change_distance(v_from, mid, l.max_acceleration, l.max_jerk), distance))
-      lo = mid;
-    else
-      hi = mid;
-  }
-  return lo;
+  const Bracket b = bisect(v_from, l.max_velocity, [&](double v) {
+    return fits(velocity_change_distance(v_from, v, l.max_acceleration, l.max_jerk), distance);
+  });
+  return b.lo;
 }
 
 double braking_velocity(double v_after, double distance, const PathLimits& l) noexcept {
@@ -72,16 +85,8 @@ double braking_velocity(double v_after, double distance, const PathLimits& l) no
   };
   if (!(distance > 0.0)) return v_after;
   if (fits(worst(l.max_velocity), distance)) return l.max_velocity;
-  double lo = v_after, hi = l.max_velocity;
-  for (int i = 0; i < kBisections; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    if (!(mid > lo && mid < hi)) break;
-    if (fits(worst(mid), distance))
-      lo = mid;
-    else
-      hi = mid;
-  }
-  return lo;
+  const Bracket b = bisect(v_after, l.max_velocity, [&](double v) { return fits(worst(v), distance); });
+  return b.lo;
 }
 
 ScurveProfile plan_scurve(double distance, double v0, double v1, const PathLimits& l) {
@@ -99,29 +104,15 @@ ScurveProfile plan_scurve(double distance, double v0, double v1, const PathLimit
       // A full stop fits (v1 is on the rising part, or beyond the peak): end at the largest speed
       // below v1 that fits, slower than asked and never faster (the predicate "fits" is monotone
       // on [0, v1]: true up to a point on the rising part, false after it).
-      double lo = 0.0, hi = v1;
-      for (int i = 0; i < kBisections; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        if (!(mid > lo && mid < hi)) break;
-        if (fits(velocity_change_distance(mid, v0, amax, jmax), distance))
-          lo = mid;
-        else
-          hi = mid;
-      }
-      v1 = lo;
+      const Bracket b =
+          bisect(0.0, v1, [&](double v) { return fits(velocity_change_distance(v, v0, amax, jmax), distance); });
+      v1 = b.lo;
     } else {
       // Not even a stop fits: the lowest speed reachable by braking within the distance (on the
       // falling part).
-      double lo = 0.0, hi = v0;
-      for (int i = 0; i < kBisections; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        if (!(mid > lo && mid < hi)) break;
-        if (fits(velocity_change_distance(mid, v0, amax, jmax), distance))
-          hi = mid;
-        else
-          lo = mid;
-      }
-      v1 = hi;
+      const Bracket b =
+          bisect(0.0, v0, [&](double v) { return !fits(velocity_change_distance(v, v0, amax, jmax), distance); });
+      v1 = b.hi;
     }
   }
   // Peak speed: the largest vp in [max(v0, v1), vmax] whose two changes fit in the distance.
@@ -134,16 +125,8 @@ ScurveProfile plan_scurve(double distance, double v0, double v1, const PathLimit
   if (fits(needed(vmax), distance)) {
     cruise = vmax > 0.0 ? std::max(0.0, distance - needed(vmax)) / vmax : 0.0;
   } else {
-    double lo = floor_v, hi = vmax;
-    for (int i = 0; i < kBisections; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      if (!(mid > lo && mid < hi)) break;
-      if (fits(needed(mid), distance))
-        lo = mid;
-      else
-        hi = mid;
-    }
-    vp = lo;
+    const Bracket b = bisect(floor_v, vmax, [&](double v) { return fits(needed(v), distance); });
+    vp = b.lo;
     // What the changes leave of the distance (rounding, or the floor when v0 -> v1 alone is
     // longer) is cruised at the peak speed.
     cruise = vp > 0.0 ? std::max(0.0, distance - needed(vp)) / vp : 0.0;

@@ -47,4 +47,17 @@ PathState ScurveProfile::sample(double t) const noexcept {
   return out;
 }
 
+double ScurveProfile::time_at(double s_mm) const noexcept {
+  double lo = 0.0, hi = duration();
+  for (int i = 0; i < 200; ++i) {  // bounded; stops when the interval cannot shrink
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi)) break;
+    if (sample(mid).s < s_mm)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return hi;
+}
+
 }  // namespace kontur::trajectory

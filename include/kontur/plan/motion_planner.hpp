@@ -55,8 +55,7 @@ class MotionPlanner {
     double feed_mm_s = 0.0;
     double start_share = 0.0;  // jerk share of the junction at its start
     double length_mm = 0.0;
-    PathLimits limits;      // final once its end junction is known
-    double cap_mm_s = 0.0;  // its speed cap [mm/s] (at the largest junction share)
+    PathLimits limits;  // its speed cap is final; its jerk rises once its end junction is known
   };
   // Consecutive pieces joined by smooth junctions (tangent and curvature continuous) with similar
   // speed caps: one entry of the look-ahead, one S-curve over their summed length with the

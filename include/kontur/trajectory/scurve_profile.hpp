@@ -34,6 +34,9 @@ class ScurveProfile {
   [[nodiscard]] double peak_velocity() const noexcept { return peak_; }
   /// State at time t [s] (clamped to [0, duration]); at the end exactly (distance, v1, 0, 0).
   [[nodiscard]] PathState sample(double t) const noexcept;
+  /// The first time [s] at which the profile has covered `s_mm` (s(t) does not decrease):
+  /// bisection, for planning (where a piece of a chain starts in its profile).
+  [[nodiscard]] double time_at(double s_mm) const noexcept;
 
  private:
   std::array<double, 8> start_time_{};  // start of phase k, [7] = end
