@@ -1,7 +1,3 @@
-#include <kontur/error.hpp>
-#include <kontur/io/setpoint_reader.hpp>
-#include <kontur/io/setpoint_writer.hpp>
-
 #include <fmt/format.h>
 
 #include <array>
@@ -9,6 +5,9 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <kontur/error.hpp>
+#include <kontur/io/setpoint_reader.hpp>
+#include <kontur/io/setpoint_writer.hpp>
 #include <optional>
 #include <string_view>
 
@@ -22,17 +21,20 @@ T get(const char* p) {
   return v;
 }
 
-std::optional<double> read_binary(std::ifstream& in, const std::string& path, const SetpointVisitor& visit) {
+std::optional<double> read_binary(std::ifstream& in, const std::string& path, const SetpointVisitor& visit,
+                                  const PeriodVisitor& period) {
   std::array<char, 24> h{};
   in.read(h.data(), 24);
   if (in.gcount() != 24)
-    throw InputError("setpoints-truncated", fmt::format("{}: the binary header is cut short (24 bytes expected)", path));
+    throw InputError("setpoints-truncated",
+                     fmt::format("{}: the binary header is cut short (24 bytes expected)", path));
   const auto version = get<std::uint32_t>(h.data() + 8), size = get<std::uint32_t>(h.data() + 12);
   if (version != setpoint_binary_version || size != 48)
     throw InputError("setpoints-version", fmt::format("{}: binary setpoints version {} with records of {} bytes: "
                                                       "this Kontur reads version {} with 48-byte records",
                                                       path, version, size, setpoint_binary_version));
   const double period_s = get<double>(h.data() + 16);
+  if (period) period(period_s);
   trajectory::Setpoint sp;
   std::array<char, 48> r{};
   for (long k = 0;; ++k) {
@@ -70,8 +72,10 @@ std::optional<double> read_csv(std::ifstream& in, const std::string& path, const
       const char* q = static_cast<const char*>(std::memchr(p, ',', static_cast<std::size_t>(end - p)));
       const char* field_end = c < 5 ? (q ? q : end) : end;
       std::from_chars_result res{};
-      if (c < 5) res = std::from_chars(p, field_end, v[static_cast<std::size_t>(c)]);
-      else res = std::from_chars(p, field_end, block);
+      if (c < 5)
+        res = std::from_chars(p, field_end, v[static_cast<std::size_t>(c)]);
+      else
+        res = std::from_chars(p, field_end, block);
       if (res.ec != std::errc() || res.ptr != field_end || (c < 5 && !q))
         throw InputError("setpoints-row",
                          fmt::format("{}:{}: column {} of \"{}\" is not a number: a row holds t, x, y, z, v "
@@ -90,24 +94,17 @@ std::optional<double> read_csv(std::ifstream& in, const std::string& path, const
 
 }  // namespace
 
-std::optional<double> for_each_setpoint(const std::string& path, const SetpointVisitor& visit) {
+std::optional<double> for_each_setpoint(const std::string& path, const SetpointVisitor& visit,
+                                        const PeriodVisitor& period) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("file-missing", fmt::format("{}: cannot open the setpoint file", path));
   std::array<char, 8> magic{};
   in.read(magic.data(), 8);
-  const bool binary = in.gcount() == 8 && std::string_view(magic.data(), 8) == std::string_view(setpoint_binary_magic, 8);
+  const bool binary =
+      in.gcount() == 8 && std::string_view(magic.data(), 8) == std::string_view(setpoint_binary_magic, 8);
   in.clear();
   in.seekg(0);
-  return binary ? read_binary(in, path, visit) : read_csv(in, path, visit);
-}
-
-std::optional<double> setpoint_file_period(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("file-missing", fmt::format("{}: cannot open the setpoint file", path));
-  std::array<char, 24> h{};
-  in.read(h.data(), 24);
-  if (in.gcount() != 24 || std::string_view(h.data(), 8) != std::string_view(setpoint_binary_magic, 8)) return std::nullopt;
-  return get<double>(h.data() + 16);
+  return binary ? read_binary(in, path, visit, period) : read_csv(in, path, visit);
 }
 
 SetpointFile read_setpoints(const std::string& path) {

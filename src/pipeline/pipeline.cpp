@@ -77,19 +77,24 @@ RunResult Pipeline::verify(const std::string& program, const std::string& setpoi
   if (moves.empty())
     throw InputError("program-no-motion",
                      fmt::format("{}: the program has no move to check setpoints against", program));
-  if (const std::optional<double> period = setpoint_file_period(setpoints);
-      period && std::abs(*period - machine_.servo_period_s) > 1e-12 * machine_.servo_period_s)
-    throw InputError("setpoints-period",
-                     fmt::format("{}: written at a servo period of {} s, but the machine's is {} s (give --machine)",
-                                 setpoints, *period, machine_.servo_period_s));
   verify::Checker checker(moves, machine_, layout_, events.observer);
   RunResult result;
-  for_each_setpoint(setpoints, [&](const trajectory::Setpoint& s) {
-    ++result.setpoints;
-    result.total_time_s = s.t_s;
-    if (events.setpoint) events.setpoint(s);
-    checker.add(s);
-  });
+  // A binary file's period is checked from its header, before any setpoint.
+  auto same_period = [&](double period_s) {
+    if (std::abs(period_s - machine_.servo_period_s) > 1e-12 * machine_.servo_period_s)
+      throw InputError("setpoints-period",
+                       fmt::format("{}: written at a servo period of {} s, but the machine's is {} s (give --machine)",
+                                   setpoints, period_s, machine_.servo_period_s));
+  };
+  for_each_setpoint(
+      setpoints,
+      [&](const trajectory::Setpoint& s) {
+        ++result.setpoints;
+        result.total_time_s = s.t_s;
+        if (events.setpoint) events.setpoint(s);
+        checker.add(s);
+      },
+      same_period);
   if (result.setpoints == 0)
     throw InputError("setpoints-empty", fmt::format("{}: the file holds no setpoint", setpoints));
   result.check = checker.finish();

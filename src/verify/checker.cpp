@@ -155,7 +155,8 @@ void Checker::nearest_on_path(const Vec3& p, std::size_t& m, double& u, double& 
     index_ = std::make_unique<PathIndex>(moves_,
                                          [this](std::size_t i) -> const std::vector<double>& { return spans_of(i); });
   const PathIndex& ix = *index_;
-  std::vector<std::size_t> stack = {0};
+  std::vector<std::size_t>& stack = search_stack_;
+  stack.assign(1, 0);
   while (!stack.empty()) {
     const PathIndex::Node& node = ix.nodes[stack.back()];
     stack.pop_back();
@@ -377,7 +378,7 @@ void Checker::add(const Sample& s) {
   double chord = 0.0;
   if (k > 0 && m == m_prev_ && u > u_prev_) {
     // The bow of the path between the two setpoints from their chord.
-    const Vec3 a = previous_point_[0], b = p, ab = b - a;
+    const Vec3 a = previous_point_, b = p, ab = b - a;
     const double len2 = ab.squaredNorm();
     for (int q = 1; q < 8; ++q) {
       const Vec3 pq = c.point(u_prev_ + (u - u_prev_) * q / 8.0) - a;
@@ -412,7 +413,7 @@ void Checker::add(const Sample& s) {
   previous_[2] = previous_[1];
   previous_[1] = previous_[0];
   previous_[0] = p0;
-  previous_point_[0] = p;
+  previous_point_ = p;
   u_prev_ = u;
   m_prev_ = m;
   m_ = m;

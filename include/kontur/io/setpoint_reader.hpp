@@ -20,14 +20,15 @@ struct SetpointFile {
 /// Receives each setpoint of a file in order (positions X Y Z; no move id).
 using SetpointVisitor = std::function<void(const trajectory::Setpoint&)>;
 
+/// Receives the servo period [s] of a binary file's header, before its first setpoint (it may
+/// throw to refuse the file before any setpoint is read).
+using PeriodVisitor = std::function<void(double period_s)>;
+
 /// Reads a setpoint file setpoint by setpoint, holding none (the same formats and errors as
 /// read_setpoints; an error may come after earlier setpoints were visited). Returns the servo
-/// period [s] a binary file carries (none for CSV).
-std::optional<double> for_each_setpoint(const std::string& path, const SetpointVisitor& visit);
-
-/// The servo period [s] in a binary file's header (none for CSV or a header cut short); reads the
-/// header only. Throws InputError ("file-missing") when the file cannot be opened.
-[[nodiscard]] std::optional<double> setpoint_file_period(const std::string& path);
+/// period [s] a binary file carries (none for CSV), which `period` (if set) also receives first.
+std::optional<double> for_each_setpoint(const std::string& path, const SetpointVisitor& visit,
+                                        const PeriodVisitor& period = {});
 
 /// Reads a CSV (header `t,x,y,z,v,block`) or binary (`KONTURSP`) setpoint file; the format is
 /// recognised by its first bytes. Throws InputError naming the file, the line (CSV) or record

@@ -134,7 +134,8 @@ class Checker {
   Report r_;
   bool measuring_ = true;                 // false once a setpoint is not finite
   std::array<AxisVector, 3> previous_{};  // positions of setpoints k-1, k-2, k-3
-  std::array<Vec3, 1> previous_point_{};  // tool point of setpoint k-1 [mm]
+  Vec3 previous_point_ = Vec3::Zero();  // tool point of setpoint k-1 [mm]
+  std::vector<std::size_t> search_stack_;  // nearest_on_path's nodes to visit (kept: no allocation per setpoint)
   double t_previous_ = 0.0;
   Vec3 last_point_ = Vec3::Zero();
   std::vector<std::vector<double>> breakpoints_;  // per move, computed once (the projection samples every span)
