@@ -1,0 +1,238 @@
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <kontur/geometry/differential.hpp>
+#include <kontur/geometry/polyline_fit.hpp>
+#include <kontur/geometry/span_polynomial.hpp>
+#include <kontur/tolerances.hpp>
+#include <limits>
+
+namespace kontur {
+namespace {
+
+constexpr int degree = 3;
+
+// Derivative `k` of a cubic polynomial (ascending coefficients) at x.
+double derivative(const PolyCoeffs& c, int k, double x) noexcept {
+  double r = 0.0;
+  for (int e = degree; e >= k; --e) {
+    double f = 1.0;
+    for (int q = 0; q < k; ++q) f *= e - q;
+    r = r * x + f * c[static_cast<std::size_t>(e)];
+  }
+  return r;
+}
+
+// A span of the spline (a line of the polyline, or a part of a long one): its start [mm of arc],
+// length [mm], line, and the four basis functions that are non-zero on it (control points j .. j+3
+// for span j), in x = u - start.
+struct Span {
+  double start = 0.0, length = 0.0;
+  std::size_t line = 0;
+  std::array<PolyCoeffs, degree + 1> basis{};
+};
+
+// A term w |sum_i b_i P_{first+i} - target|^2 of the energy.
+struct Term {
+  std::size_t first = 0;
+  std::array<double, degree + 1> b{};
+  Vec3 target = Vec3::Zero();
+  double weight = 0.0;
+};
+
+}  // namespace
+
+double polyline_distance(const std::vector<Vec3>& v, const Vec3& p, long first, long last) noexcept {
+  const long lines = static_cast<long>(v.size()) - 1;
+  first = std::max(first, 0L);
+  last = std::min(last, lines - 1);
+  double d = std::numeric_limits<double>::infinity();
+  for (long k = first; k <= last; ++k)
+    d = std::min(d, segment_distance(p, v[static_cast<std::size_t>(k)], v[static_cast<std::size_t>(k + 1)]));
+  return d;
+}
+
+std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& v, const Vec3& start_tangent, const Vec3& end_tangent,
+                                        double tolerance_mm) {
+  if (v.size() < 5 || !(tolerance_mm > 0.0)) return std::nullopt;
+  const std::size_t n = v.size() - 1;  // lines
+  std::vector<double> s(n + 1, 0.0);   // arc length at each vertex [mm]
+  for (std::size_t i = 0; i < n; ++i) s[i + 1] = s[i] + (v[i + 1] - v[i]).norm();
+  const double total = s[n];
+  if (!std::isfinite(total)) return std::nullopt;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!(s[i + 1] - s[i] > 1e-9 * total)) return std::nullopt;
+
+  // Knots: every vertex, and inside a line that is long against the tolerance a few more (a span
+  // must be able to turn near a vertex and run straight along the rest of its line).
+  std::vector<double> knots(4, 0.0);
+  std::vector<Span> spans;
+  std::vector<std::size_t> first_span(n + 1);  // of each line (first_span[n]: the number of spans)
+  for (std::size_t i = 0; i < n; ++i) {
+    first_span[i] = spans.size();
+    const double len = s[i + 1] - s[i];
+    const int q = std::clamp(static_cast<int>(std::ceil(len / (tolerances::smooth_fit_span_tolerances * tolerance_mm))),
+                             1, tolerances::smooth_fit_spans_per_line);
+    for (int k = 0; k < q; ++k) {
+      Span sp;
+      sp.start = s[i] + len * k / q;
+      const double end = k + 1 == q ? s[i + 1] : s[i] + len * (k + 1) / q;
+      sp.length = end - sp.start;
+      sp.line = i;
+      spans.push_back(sp);
+      if (i + 1 < n || k + 1 < q) knots.push_back(end);
+    }
+  }
+  first_span[n] = spans.size();
+  for (int i = 0; i < 4; ++i) knots.push_back(total);
+  const std::size_t m = spans.size();
+  for (std::size_t j = 0; j < m; ++j) {
+    const auto b = basis_polynomials(knots, degree, static_cast<int>(j) + degree, spans[j].start);
+    for (std::size_t i = 0; i <= degree; ++i) spans[j].basis[i] = b[i];
+  }
+
+  // Control points: the first and last three fixed (end points, tangents, zero curvature), the
+  // others start at the polyline's point at their Greville abscissa; the fit solves for the
+  // corrections (small numbers: the system's rounding stays far below the tolerance).
+  const std::size_t nc = m + 3;
+  auto on_polyline = [&](double u) -> Vec3 {
+    const auto it = std::upper_bound(s.begin(), s.end(), u);
+    const std::size_t k =
+        std::min<std::size_t>(n - 1, it == s.begin() ? 0 : static_cast<std::size_t>(it - s.begin()) - 1);
+    const double f = std::clamp((u - s[k]) / (s[k + 1] - s[k]), 0.0, 1.0);
+    return v[k] + f * (v[k + 1] - v[k]);
+  };
+  std::vector<Vec3> ctrl(nc);
+  for (std::size_t i = 0; i < nc; ++i) ctrl[i] = on_polyline((knots[i + 1] + knots[i + 2] + knots[i + 3]) / 3.0);
+  ctrl[0] = v[0];
+  ctrl[1] = v[0] + start_tangent * knots[4] / 3.0;
+  ctrl[2] = ctrl[1] + start_tangent * knots[5] / 3.0;
+  ctrl[nc - 1] = v[n];
+  ctrl[nc - 2] = v[n] - end_tangent * (total - knots[nc - 1]) / 3.0;
+  ctrl[nc - 3] = ctrl[nc - 2] - end_tangent * (total - knots[nc - 2]) / 3.0;
+  const std::size_t first_free = 3, free = m - 3;  // control points 3 .. nc - 4
+
+  // The terms that do not change between fits: the penalties (bending: 2-point Gauss, exact for
+  // the linear second derivative; jerk: the third derivative is constant on a span) and the data
+  // points (each span's start and quarters, on the polyline at the same arc length).
+  const double l = tolerances::smooth_fit_length_tolerances * tolerance_mm;  // smoothing length [mm]
+  std::vector<Term> penalties;
+  penalties.reserve(3 * m);
+  std::vector<Term> data;
+  data.reserve(4 * m + 1);
+  for (std::size_t j = 0; j < m; ++j) {
+    const Span& sp = spans[j];
+    const double h = sp.length;
+    for (const double g : {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)}) {
+      Term t{j, {}, Vec3::Zero(), std::pow(l, 4) * h / 2.0};
+      for (std::size_t i = 0; i <= degree; ++i) t.b[i] = derivative(sp.basis[i], 2, g * h);
+      penalties.push_back(t);
+    }
+    Term t{j, {}, Vec3::Zero(), std::pow(l, 6) * h};
+    for (std::size_t i = 0; i <= degree; ++i) t.b[i] = derivative(sp.basis[i], 3, 0.5 * h);
+    penalties.push_back(t);
+    const int points = j + 1 == m ? 5 : 4;  // the last span: its end too
+    for (int q = 0; q < points; ++q) {
+      const double f = q / 4.0;
+      Term d{j, {}, on_polyline(sp.start + f * h), h / 4.0};
+      for (std::size_t i = 0; i <= degree; ++i) d.b[i] = derivative(sp.basis[i], 0, f * h);
+      data.push_back(d);
+    }
+  }
+
+  std::vector<double> factor(m, 1.0);  // weight factor of each span's data points
+  const double target = tolerances::smooth_tolerance_share * tolerance_mm;
+  const double reach = 4.0 * tolerance_mm;  // lines searched around a sample [mm of arc]
+  std::vector<Eigen::Triplet<double>> triplets;
+  Eigen::SparseMatrix<double> a(static_cast<Eigen::Index>(free), static_cast<Eigen::Index>(free));
+  Eigen::MatrixX3d rhs(static_cast<Eigen::Index>(free), 3);
+  std::vector<Vec3> points = ctrl;  // the fitted control points
+  std::vector<double> deviation(m);
+  std::vector<Vec3> samples;
+  std::vector<std::size_t> sample_start(m + 1);
+  std::vector<char> raise(m);
+  for (int iteration = 1; iteration <= tolerances::smooth_fit_iterations; ++iteration) {
+    triplets.clear();
+    rhs.setZero();
+    auto add = [&](const Term& t, double weight) {
+      // the residual of the reference control points; the corrections of the free ones are unknowns
+      Vec3 r = t.target;
+      for (std::size_t i = 0; i <= degree; ++i) r -= t.b[i] * ctrl[t.first + i];
+      for (std::size_t i = 0; i <= degree; ++i) {
+        const std::size_t ci = t.first + i;
+        if (ci < first_free || ci >= first_free + free) continue;
+        const auto fi = static_cast<Eigen::Index>(ci - first_free);
+        rhs.row(fi) += weight * t.b[i] * r.transpose();
+        for (std::size_t k = 0; k <= degree; ++k) {
+          const std::size_t ck = t.first + k;
+          if (ck < first_free || ck >= first_free + free) continue;
+          triplets.emplace_back(fi, static_cast<Eigen::Index>(ck - first_free), weight * t.b[i] * t.b[k]);
+        }
+      }
+    };
+    for (const Term& t : penalties) add(t, t.weight);
+    for (const Term& d : data) add(d, d.weight * factor[d.first]);
+    if (free > 0) {
+      a.setFromTriplets(triplets.begin(), triplets.end());
+      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(a);
+      if (solver.info() != Eigen::Success) return std::nullopt;
+      const Eigen::MatrixX3d x = solver.solve(rhs);
+      if (solver.info() != Eigen::Success || !x.allFinite()) return std::nullopt;
+      for (std::size_t i = 0; i < free; ++i)
+        points[first_free + i] = ctrl[first_free + i] + x.row(static_cast<Eigen::Index>(i)).transpose();
+    }
+
+    // Samples of every span, close enough that the curve between them stays near their chords.
+    samples.clear();
+    for (std::size_t j = 0; j < m; ++j) {
+      sample_start[j] = samples.size();
+      const Span& sp = spans[j];
+      const int k = std::clamp(static_cast<int>(std::ceil(sp.length / (0.25 * tolerance_mm))), 4, 32);
+      for (int q = 0; q <= k; ++q) {
+        const double x = sp.length * q / k;
+        Vec3 c = Vec3::Zero();
+        for (std::size_t i = 0; i <= degree; ++i) c += derivative(sp.basis[i], 0, x) * points[j + i];
+        samples.push_back(c);
+      }
+    }
+    sample_start[m] = samples.size();
+    // Distance of each sample from the polyline's lines around it (a subset of the lines: the
+    // true distance is no larger), and of each inner vertex from the chords of the samples
+    // around it (the ends are on the curve).
+    for (std::size_t j = 0; j < m; ++j) {
+      const std::size_t line = spans[j].line;
+      const double from = spans[j].start, to = from + spans[j].length;
+      long lo = static_cast<long>(line), hi = static_cast<long>(line);
+      while (lo > 0 && s[static_cast<std::size_t>(lo)] > from - reach) --lo;
+      while (hi + 1 < static_cast<long>(n) && s[static_cast<std::size_t>(hi) + 1] < to + reach) ++hi;
+      lo = std::min(lo, static_cast<long>(line) - 1);
+      hi = std::max(hi, static_cast<long>(line) + 1);
+      double d = 0.0;
+      for (std::size_t q = sample_start[j]; q < sample_start[j + 1]; ++q)
+        d = std::max(d, polyline_distance(v, samples[q], lo, hi));
+      deviation[j] = d;
+    }
+    for (std::size_t i = 1; i < n; ++i) {
+      const std::size_t j = first_span[i];  // the span that starts at vertex i
+      double d = std::numeric_limits<double>::infinity();
+      const std::size_t q0 = sample_start[j >= 2 ? j - 2 : 0], q1 = sample_start[std::min(m, j + 2)];
+      for (std::size_t q = q0; q + 1 < q1; ++q) d = std::min(d, segment_distance(v[i], samples[q], samples[q + 1]));
+      deviation[j - 1] = std::max(deviation[j - 1], d);
+      deviation[j] = std::max(deviation[j], d);
+    }
+    const double worst = *std::max_element(deviation.begin(), deviation.end());
+    if (worst <= target) return PolylineFit{NurbsCurve(NurbsData{degree, knots, points, {}}), s, worst, iteration};
+    // More weight where the curve strays, and on the spans beside it.
+    std::fill(raise.begin(), raise.end(), 0);
+    for (std::size_t j = 0; j < m; ++j)
+      if (deviation[j] > target)
+        for (std::size_t k = j > 0 ? j - 1 : 0; k <= std::min(m - 1, j + 1); ++k) raise[k] = 1;
+    for (std::size_t j = 0; j < m; ++j)
+      if (raise[j] != 0) factor[j] *= tolerances::smooth_fit_weight_step;
+  }
+  return std::nullopt;
+}
+
+}  // namespace kontur
