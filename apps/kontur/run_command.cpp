@@ -38,6 +38,7 @@ struct RunOptions {
   std::string report;
   bool quiet = false;
   bool no_blend = false;
+  bool no_smooth = false;
 };
 
 // A progress bar on stderr for runs longer than a second, only when stderr is a terminal (and
@@ -111,6 +112,7 @@ bool run_program(const RunOptions& o) {
   const SetpointFormat format = o.format == "binary" ? SetpointFormat::binary : SetpointFormat::csv;
   PipelineOptions options;
   options.blend = !o.no_blend;
+  options.smooth = !o.no_smooth;
   options.time_optimal = o.time_optimal;
   Pipeline pipeline(std::move(machine), options);
   std::unique_ptr<RunReportBuilder> builder;
@@ -170,6 +172,8 @@ void register_run_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--quiet", o->quiet, "no progress bar and no summary on stderr (errors are still printed)");
   cmd->add_flag("--no-blend", o->no_blend,
                 "do not blend corners between lines within the G64 tolerance (each corner is a junction)");
+  cmd->add_flag("--no-smooth", o->no_smooth,
+                "do not smooth runs of dense lines within the G64 tolerance (each line runs as programmed)");
   cmd->footer(
       "Example:\n  kontur run examples/programs/square_arc.ngc -o square_arc.csv --summary square_arc.json "
       "--report square_arc.html\n"

@@ -28,6 +28,7 @@ struct VerifyOptions {
   std::string report;
   bool quiet = false;
   bool no_blend = false;
+  bool no_smooth = false;
 };
 
 bool verify_setpoints(const VerifyOptions& o) {
@@ -38,6 +39,7 @@ bool verify_setpoints(const VerifyOptions& o) {
   if (o.machine.empty()) validate(machine);
   PipelineOptions options;
   options.blend = !o.no_blend;
+  options.smooth = !o.no_smooth;
   Pipeline pipeline(std::move(machine), options);
   std::unique_ptr<RunReportBuilder> builder;
   if (!o.report.empty()) builder = std::make_unique<RunReportBuilder>(pipeline.machine(), pipeline.moves());
@@ -70,6 +72,8 @@ void register_verify_command(CLI::App& app, int& exit_code) {
       ->type_name("FILE");
   cmd->add_flag("--quiet", o->quiet, "no summary on stderr (errors are still printed)");
   cmd->add_flag("--no-blend", o->no_blend, "the path without corner blends (setpoints of kontur run --no-blend)");
+  cmd->add_flag("--no-smooth", o->no_smooth,
+                "the path with dense lines as programmed (setpoints of kontur run --no-smooth)");
   cmd->footer(
       "Example:\n  kontur run examples/programs/square_arc.ngc -o square_arc.csv --quiet\n"
       "  kontur verify examples/programs/square_arc.ngc square_arc.csv --summary -\n"

@@ -23,6 +23,7 @@ namespace kontur {
 /// How a program is run.
 struct PipelineOptions {
   bool blend = true;          ///< blend corners within the G64 tolerance (false: `--no-blend`)
+  bool smooth = true;         ///< smooth runs of dense lines within the G64 tolerance (false: `--no-smooth`)
   bool check = true;          ///< check the setpoints independently as they stream (false: planning only)
   bool time_optimal = false;  ///< add the time-optimal reference (acceleration-limited) to the summary
 };

@@ -189,6 +189,37 @@ inline constexpr double plan_piece_cap_ratio = 1.5;
 /// before the look-ahead sees them.
 inline constexpr std::size_t plan_chain_max_pieces = 256;
 
+// ---- smoothing of dense G01 within the G64 tolerance (program/line_smoother.hpp, geometry/polyline_fit.hpp)
+/// A run of lines is smoothed only where consecutive lines turn by at most 30 degrees (cosine of
+/// the turn at least this): sharper corners keep their corner (blended or a near stop).
+inline constexpr double smooth_max_turn_cos = 0.8660254037844387;
+/// Lines inside a smoothed run are at most this many times the tolerance long: longer lines stay
+/// straight (they may start or end a run).
+inline constexpr double smooth_max_line_tolerances = 50.0;
+/// Fewest lines in a run that is smoothed (its first and last line stay lines; the curve between
+/// them needs four lines or more to have a free control point).
+inline constexpr std::size_t smooth_min_lines = 6;
+/// Most lines held in one run: bounds the program stage's window (a longer run is cut there).
+inline constexpr std::size_t smooth_max_run_lines = 2000;
+/// Share of the tolerance the fitted curve is made to keep, measured on samples (the rest covers
+/// what lies between samples).
+inline constexpr double smooth_tolerance_share = 0.9;
+/// Starting smoothing length of the fit, in tolerances (30: 0.3 mm at the default 0.01 mm).
+inline constexpr double smooth_fit_length_tolerances = 30.0;
+/// A line longer than this many tolerances gets more than one span in the fit (at most
+/// smooth_fit_spans_per_line), so that the curve can turn near its ends and run straight between.
+inline constexpr double smooth_fit_span_tolerances = 10.0;
+inline constexpr int smooth_fit_spans_per_line = 8;
+/// Fits tried before a run is left as lines.
+inline constexpr int smooth_fit_iterations = 24;
+/// Factor on the weights of the lines where a fit strays (the smoothing length there shrinks by
+/// its fourth root: 2).
+inline constexpr double smooth_fit_weight_step = 16.0;
+/// The checker searches a setpoint's programmed lines this many lines before and after its own.
+inline constexpr long check_smoothing_lines = 16;
+/// The checker accepts a smoothed setpoint whose distance exceeds the tolerance by at most this, relative.
+inline constexpr double smoothing_deviation_relative = 1e-9;
+
 // ---- corner blending within the G64 tolerance (plan/corner_blend.hpp)
 /// Lines shorter than this are not blended [mm] (their corners stay junctions): a blend on them
 /// would bend within a fraction of a micrometre.

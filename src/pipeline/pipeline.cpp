@@ -29,7 +29,7 @@ double time_optimal_time(const std::vector<program::Move>& moves, const Machine&
 Pipeline::Pipeline(Machine machine, PipelineOptions options)
     : machine_(std::move(machine)),
       options_(options),
-      path_(machine_, options.blend, [this](const Curve& blend, double feed_mm_s) {
+      path_(machine_, options.blend, options.smooth, [this](const Curve& blend, double feed_mm_s) {
         return plan::curve_speed_cap(blend, feed_mm_s, machine_);
       }) {}
 

@@ -54,6 +54,7 @@ Move move_of(const gcode::Block& b, const Machine& machine) {
   m.feed_mm_s = feed;
   m.exact_stop = b.modal.path_control != gcode::PathControl::blend;
   m.corner_tolerance_mm = corner_tolerance(b, machine);
+  if (!m.exact_stop) m.naive_cam_tolerance_mm = b.modal.naive_cam_tolerance_mm;
   m.length_mm = len;
   return m;
 }

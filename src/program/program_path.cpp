@@ -4,8 +4,13 @@
 
 namespace kontur::program {
 
-ProgramPath::ProgramPath(const Machine& machine, bool blend, BlendSpeed speed)
-    : machine_(machine), blend_(blend), speed_(std::move(speed)), blender_(blend, &machine, speed_) {}
+ProgramPath::ProgramPath(const Machine& machine, bool blend, bool smooth, BlendSpeed speed)
+    : machine_(machine),
+      blend_(blend),
+      smooth_(smooth),
+      speed_(std::move(speed)),
+      smoother_(smooth),
+      blender_(blend, &machine, speed_) {}
 
 void ProgramPath::take(std::vector<Move>& ready, const PathHandlers& handlers) {
   for (Move& m : ready) {
@@ -18,20 +23,31 @@ void ProgramPath::take(std::vector<Move>& ready, const PathHandlers& handlers) {
 
 void ProgramPath::read(const std::string& program, const PathHandlers& handlers) {
   moves_.clear();
+  smoother_ = LineSmoother(smooth_);
   blender_ = CornerBlender(blend_, &machine_, speed_);
   std::vector<Move> ready;
+  // The smoother's output goes through the blender, in order.
+  auto blend = [&] {
+    for (const Move& m : smoothed_) blender_.push(m, ready);
+    smoothed_.clear();
+  };
   gcode::for_each_block(program, [&](const gcode::Block& b) {
     Move move = move_of(b, machine_);
-    if (!move.curve) {  // a dwell: the motion stops (no blend across it) and stays
+    if (!move.curve) {  // a dwell: the motion stops (no smoothing or blend across it) and stays
+      smoother_.flush(smoothed_);
+      blend();
       blender_.flush(ready);
       take(ready, handlers);
       if (b.type == gcode::BlockType::dwell && handlers.dwell) handlers.dwell({b.dwell_s, b.location.line});
     } else {
-      blender_.push(move, ready);
+      smoother_.push(move, smoothed_);
+      blend();
       take(ready, handlers);
     }
     if (handlers.block) handlers.block(b);
   });
+  smoother_.flush(smoothed_);
+  blend();
   blender_.flush(ready);
   take(ready, handlers);
 }

@@ -23,6 +23,9 @@ std::string summary_json(const std::string& program, const Machine& machine, con
   j["blends"] = r.blends;
   j["max_blend_deviation_mm"] = r.max_blend_deviation_mm;
   j["blend_tolerance_mm"] = r.blend_tolerance_mm;
+  j["smoothed_lines"] = r.smoothed_lines;
+  j["max_smoothing_deviation_mm"] = r.max_smoothing_deviation_mm;
+  j["smoothing_tolerance_mm"] = r.smoothing_tolerance_mm;
   j["passed"] = r.passed(machine);
   j["failures"] = r.failures(machine);
   // Per move (docs/setpoints.md): the setpoints the checker matched to it and their maxima.

@@ -233,7 +233,8 @@ bool Report::passed(const Machine& machine) const noexcept {
   return finite && uniform_time && max_velocity_ratio <= 1 + kRelative && max_acceleration_ratio <= 1 + kRelative &&
          max_jerk_ratio <= 1 + kRelative && max_path_error_mm <= 1e-6 &&
          max_chord_error_mm <= machine.chord_tolerance_mm * (1 + kRelative) && start_error_mm <= 1e-9 &&
-         end_error_mm <= 1e-9 && max_blend_deviation_ratio <= 1 + tolerances::blend_deviation_relative;
+         end_error_mm <= 1e-9 && max_blend_deviation_ratio <= 1 + tolerances::blend_deviation_relative &&
+         max_smoothing_deviation_ratio <= 1 + tolerances::smoothing_deviation_relative;
 }
 
 std::vector<std::string> Report::failures(const Machine& machine) const {
@@ -255,6 +256,9 @@ std::vector<std::string> Report::failures(const Machine& machine) const {
   if (max_blend_deviation_ratio > 1 + tolerances::blend_deviation_relative)
     f.push_back(fmt::format("a corner blend is {:.6g} mm from the programmed corner (tolerance {} mm)",
                             max_blend_deviation_mm, blend_tolerance_mm));
+  if (max_smoothing_deviation_ratio > 1 + tolerances::smoothing_deviation_relative)
+    f.push_back(fmt::format("a setpoint of a smoothed run is {:.6g} mm from the programmed lines (tolerance {} mm)",
+                            max_smoothing_deviation_mm, smoothing_tolerance_mm));
   return f;
 }
 
@@ -375,6 +379,24 @@ void Checker::add(const Sample& s) {
   const std::size_t m = match(s, p, u, d);
   const Curve& c = *moves_[m].curve;
   r_.max_path_error_mm = std::max(r_.max_path_error_mm, d);
+  if (const auto& pl = moves_[m].lines) {
+    // A smoothed line: the distance from the programmed lines around it (the nearest of the
+    // tolerances::check_smoothing_lines lines on each side; the true distance is no larger).
+    const std::vector<Vec3>& v = *pl->vertices;
+    const long lines = static_cast<long>(v.size()) - 1, own = static_cast<long>(pl->line);
+    double dl = std::numeric_limits<double>::infinity();
+    for (long i = std::max(0L, own - tolerances::check_smoothing_lines);
+         i <= std::min(lines - 1, own + tolerances::check_smoothing_lines); ++i) {
+      const auto iu = static_cast<std::size_t>(i);
+      dl = std::min(dl, segment_distance(p, v[iu], v[iu + 1]));
+    }
+    r_.max_smoothing_deviation_mm = std::max(r_.max_smoothing_deviation_mm, dl);
+    const double ratio = pl->tolerance_mm > 0.0 ? dl / pl->tolerance_mm : std::numeric_limits<double>::infinity();
+    if (ratio >= r_.max_smoothing_deviation_ratio) {
+      r_.max_smoothing_deviation_ratio = ratio;
+      r_.smoothing_tolerance_mm = pl->tolerance_mm;
+    }
+  }
   double chord = 0.0;
   if (k > 0 && m == m_prev_ && u > u_prev_) {
     // The bow of the path between the two setpoints from their chord.
@@ -434,6 +456,7 @@ Report Checker::finish() {
   r.end_error_mm = (last_point_ - last.point(last.u_max())).norm();
   // Corner blends: each within the tolerance of the programmed lines it replaces.
   for (const program::Move& pm : moves_) {
+    if (pm.lines) ++r.smoothed_lines;
     if (!pm.corner) continue;
     ++r.blends;
     const double dev = blend_deviation(*pm.curve, *pm.corner);

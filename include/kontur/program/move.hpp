@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <vector>
 
 namespace kontur::program {
 
@@ -24,18 +25,29 @@ struct ProgrammedCorner {
   double tolerance_mm = 0.0;   ///< the G64 tolerance the blend must keep [mm]
 };
 
+/// The programmed lines a smoothed line's curve replaces (program/line_smoother.hpp): the run's
+/// vertices, shared by its moves, and which of its lines this move is.
+struct ProgrammedLines {
+  std::shared_ptr<const std::vector<Vec3>> vertices;  ///< the run's programmed vertices [mm]
+  std::size_t line = 0;                               ///< this move's line: vertices[line] -> vertices[line + 1]
+  double tolerance_mm = 0.0;                          ///< the G64 tolerance the curve must keep [mm]
+};
+
 /// One move of the path.
 struct Move {
-  MoveId id = no_move;                 ///< index in the path (set when the move leaves the program stage)
-  std::shared_ptr<const Curve> curve;  ///< the tool path [mm] (shared: planning keeps it while needed)
-  double feed_mm_s = 0.0;              ///< programmed path speed [mm/s] (rapid: the machine's rapid feed)
-  bool exact_stop = false;             ///< stop at its end (G61 / G61.1)
-  double corner_tolerance_mm = 0.0;    ///< G64 tolerance at its end [mm] (0: no blending there)
-  long source_line = 0;                ///< line of the program it comes from (a blend: the outgoing block's)
-  const char* type = "";               ///< the block's type name ("line", "arc", ...; "blend" for a corner blend)
-  double length_mm = 0.0;              ///< its length as run [mm]
+  MoveId id = no_move;                  ///< index in the path (set when the move leaves the program stage)
+  std::shared_ptr<const Curve> curve;   ///< the tool path [mm] (shared: planning keeps it while needed)
+  double feed_mm_s = 0.0;               ///< programmed path speed [mm/s] (rapid: the machine's rapid feed)
+  bool exact_stop = false;              ///< stop at its end (G61 / G61.1)
+  double corner_tolerance_mm = 0.0;     ///< G64 tolerance at its end [mm] (0: no blending there)
+  double naive_cam_tolerance_mm = 0.0;  ///< G64 Q [mm] (0: none given; smoothing keeps the larger of P and Q)
+  long source_line = 0;                 ///< line of the program it comes from (a blend: the outgoing block's)
+  const char* type = "";                ///< the block's type name ("line", "arc", ...; "blend" for a corner blend)
+  double length_mm = 0.0;               ///< its length as run [mm]
   /// A corner blend: the programmed corner it replaces (checked against its tolerance).
   std::optional<ProgrammedCorner> corner;
+  /// A smoothed line: the programmed lines around it (checked against their tolerance).
+  std::optional<ProgrammedLines> lines;
 };
 
 /// A move along `curve` at `feed_mm_s` [mm/s] (its length computed; type "curve"; no id), for

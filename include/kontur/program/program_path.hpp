@@ -1,12 +1,13 @@
 #pragma once
-// The path a part program runs: each block becomes a move (move_of), corners between lines are
-// blended within the G64 tolerance (CornerBlender), dwells stop the motion, and every move gets
-// its id (its index in the path). One place, so that the pipeline, `kontur verify` and the tests
+// The path a part program runs: each block becomes a move (move_of), runs of dense lines are
+// smoothed within the G64 tolerance (LineSmoother), corners between lines are blended within it
+// (CornerBlender), dwells stop the motion, and every move gets its id (its index in the path). One place, so that the pipeline, `kontur verify` and the tests
 // see the same path.
 #include <functional>
 #include <kontur/gcode/block.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/program/corner_blender.hpp>
+#include <kontur/program/line_smoother.hpp>
 #include <kontur/program/move.hpp>
 #include <string>
 #include <vector>
@@ -22,9 +23,10 @@ struct PathHandlers {
 
 class ProgramPath {
  public:
-  /// `blend` false: corners are junctions (`--no-blend`); `speed` estimates how fast a blend runs
-  /// (CornerBlender; without it every corner within its tolerance is blended).
-  ProgramPath(const Machine& machine, bool blend, BlendSpeed speed = {});
+  /// `blend` false: corners are junctions (`--no-blend`); `smooth` false: runs of dense lines stay
+  /// lines (`--no-smooth`); `speed` estimates how fast a blend runs (CornerBlender; without it
+  /// every corner within its tolerance is blended).
+  ProgramPath(const Machine& machine, bool blend, bool smooth, BlendSpeed speed = {});
   ProgramPath(const ProgramPath&) = delete;
   ProgramPath& operator=(const ProgramPath&) = delete;
 
@@ -35,14 +37,19 @@ class ProgramPath {
 
   /// Every move of the path, in order: moves()[id].id == id.
   [[nodiscard]] const std::vector<Move>& moves() const noexcept { return moves_; }
+  /// What the smoothing of dense lines did in the last read.
+  [[nodiscard]] const SmoothingStats& smoothing() const noexcept { return smoother_.stats(); }
 
  private:
   void take(std::vector<Move>& ready, const PathHandlers& handlers);
 
   const Machine& machine_;
   bool blend_;
+  bool smooth_;
   BlendSpeed speed_;
+  LineSmoother smoother_;
   CornerBlender blender_;
+  std::vector<Move> smoothed_;  // moves out of the smoother, into the blender
   std::vector<Move> moves_;
 };
 

@@ -73,11 +73,17 @@ struct Report {
   double max_blend_deviation_mm = 0.0;     ///< largest distance of a blend from its programmed corner's lines [mm]
   double blend_tolerance_mm = 0.0;         ///< the tolerance of the blend with the largest deviation / tolerance [mm]
   double max_blend_deviation_ratio = 0.0;  ///< largest deviation / tolerance of a blend
+  long smoothed_lines = 0;                 ///< moves that are smoothed lines (program/line_smoother.hpp)
+  double max_smoothing_deviation_mm =
+      0.0;  ///< largest distance of a setpoint on a smoothed line from the programmed lines [mm]
+  double smoothing_tolerance_mm = 0.0;  ///< the tolerance of that setpoint's line (largest deviation / tolerance) [mm]
+  double max_smoothing_deviation_ratio = 0.0;  ///< largest distance / tolerance of a setpoint on a smoothed line
   /// One per move, in the order of `moves` (empty when the check could not run: no setpoint,
   /// no move, or a setpoint not finite). Their maxima are the maxima above.
   std::vector<BlockStats> blocks;
   /// True if every measure is within the machine's limits (1e-6 relative) and tolerances (every
-  /// blend within its corner's tolerance, tolerances::blend_deviation_relative).
+  /// blend within its corner's tolerance, tolerances::blend_deviation_relative; every setpoint on a
+  /// smoothed line within the tolerance of the programmed lines, tolerances::smoothing_deviation_relative).
   [[nodiscard]] bool passed(const Machine& machine) const noexcept;
   /// What failed, one line each (empty if passed).
   [[nodiscard]] std::vector<std::string> failures(const Machine& machine) const;
@@ -132,9 +138,9 @@ class Checker {
   double period_;
   std::vector<Axis> axes_;
   Report r_;
-  bool measuring_ = true;                 // false once a setpoint is not finite
-  std::array<AxisVector, 3> previous_{};  // positions of setpoints k-1, k-2, k-3
-  Vec3 previous_point_ = Vec3::Zero();  // tool point of setpoint k-1 [mm]
+  bool measuring_ = true;                  // false once a setpoint is not finite
+  std::array<AxisVector, 3> previous_{};   // positions of setpoints k-1, k-2, k-3
+  Vec3 previous_point_ = Vec3::Zero();     // tool point of setpoint k-1 [mm]
   std::vector<std::size_t> search_stack_;  // nearest_on_path's nodes to visit (kept: no allocation per setpoint)
   double t_previous_ = 0.0;
   Vec3 last_point_ = Vec3::Zero();
