@@ -145,38 +145,56 @@ std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& v, const Vec3& 
   std::vector<double> factor(m, 1.0);  // weight factor of each span's data points
   const double target = tolerances::smooth_tolerance_share * tolerance_mm;
   const double reach = 4.0 * tolerance_mm;  // lines searched around a sample [mm of arc]
-  std::vector<Eigen::Triplet<double>> triplets;
-  Eigen::SparseMatrix<double> a(static_cast<Eigen::Index>(free), static_cast<Eigen::Index>(free));
-  Eigen::MatrixX3d rhs(static_cast<Eigen::Index>(free), 3);
-  std::vector<Vec3> points = ctrl;  // the fitted control points
+  std::vector<Vec3> points = ctrl;          // the fitted control points
   std::vector<double> deviation(m);
   std::vector<Vec3> samples;
   std::vector<std::size_t> sample_start(m + 1);
   std::vector<char> raise(m);
-  for (int iteration = 1; iteration <= tolerances::smooth_fit_iterations; ++iteration) {
-    triplets.clear();
-    rhs.setZero();
-    auto add = [&](const Term& t, double weight) {
-      // the residual of the reference control points; the corrections of the free ones are unknowns
-      Vec3 r = t.target;
-      for (std::size_t i = 0; i <= degree; ++i) r -= t.b[i] * ctrl[t.first + i];
-      for (std::size_t i = 0; i <= degree; ++i) {
-        const std::size_t ci = t.first + i;
-        if (ci < first_free || ci >= first_free + free) continue;
-        const auto fi = static_cast<Eigen::Index>(ci - first_free);
-        rhs.row(fi) += weight * t.b[i] * r.transpose();
-        for (std::size_t k = 0; k <= degree; ++k) {
-          const std::size_t ck = t.first + k;
-          if (ck < first_free || ck >= first_free + free) continue;
-          triplets.emplace_back(fi, static_cast<Eigen::Index>(ck - first_free), weight * t.b[i] * t.b[k]);
-        }
+
+  // The normal equations of the free control points: a banded matrix (three off-diagonals) whose
+  // pattern never changes: built once (its lower triangle, which the LDL^T solver reads), analysed
+  // once, and refilled each fit: the penalties' share is the same every time, the data's is
+  // weighted anew.
+  const auto nf = static_cast<Eigen::Index>(free);
+  Eigen::SparseMatrix<double> a(nf, nf);
+  Eigen::MatrixX3d rhs_penalty = Eigen::MatrixX3d::Zero(nf, 3), rhs(nf, 3);
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
+  std::vector<double> penalty_values;
+  // Adds w |sum b_i P_i - target|^2 to the matrix (lower triangle) and `r`.
+  auto add = [&](const Term& t, double weight, Eigen::MatrixX3d& r) {
+    Vec3 res = t.target;  // the residual of the reference control points
+    for (std::size_t i = 0; i <= degree; ++i) res -= t.b[i] * ctrl[t.first + i];
+    for (std::size_t i = 0; i <= degree; ++i) {
+      const std::size_t ci = t.first + i;
+      if (ci < first_free || ci >= first_free + free) continue;
+      const auto fi = static_cast<Eigen::Index>(ci - first_free);
+      r.row(fi) += weight * t.b[i] * res.transpose();
+      for (std::size_t k = 0; k <= degree; ++k) {
+        const std::size_t ck = t.first + k;
+        if (ck < ci || ck >= first_free + free) continue;  // lower triangle: row >= column
+        a.coeffRef(static_cast<Eigen::Index>(ck - first_free), fi) += weight * t.b[i] * t.b[k];
       }
-    };
-    for (const Term& t : penalties) add(t, t.weight);
-    for (const Term& d : data) add(d, d.weight * factor[d.first]);
+    }
+  };
+  if (free > 0) {
+    std::vector<Eigen::Triplet<double>> pattern;
+    pattern.reserve(4 * free);
+    for (std::size_t c = 0; c < free; ++c)
+      for (std::size_t r = c; r < std::min(free, c + degree + 1); ++r)
+        pattern.emplace_back(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c), 0.0);
+    a.setFromTriplets(pattern.begin(), pattern.end());
+    a.makeCompressed();
+    for (const Term& t : penalties) add(t, t.weight, rhs_penalty);
+    penalty_values.assign(a.valuePtr(), a.valuePtr() + a.nonZeros());
+    solver.analyzePattern(a);
+  }
+
+  for (int iteration = 1; iteration <= tolerances::smooth_fit_iterations; ++iteration) {
     if (free > 0) {
-      a.setFromTriplets(triplets.begin(), triplets.end());
-      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(a);
+      std::copy(penalty_values.begin(), penalty_values.end(), a.valuePtr());
+      rhs = rhs_penalty;
+      for (const Term& d : data) add(d, d.weight * factor[d.first], rhs);
+      solver.factorize(a);
       if (solver.info() != Eigen::Success) return std::nullopt;
       const Eigen::MatrixX3d x = solver.solve(rhs);
       if (solver.info() != Eigen::Success || !x.allFinite()) return std::nullopt;

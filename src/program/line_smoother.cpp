@@ -81,10 +81,11 @@ void LineSmoother::flush(std::vector<Move>& out) {
   stats_.lines += static_cast<long>(n - 2);
   const std::shared_ptr<const Curve> curve = std::make_shared<SpanPolynomialCurve>(fit->curve);
   const std::shared_ptr<const std::vector<Vec3>> shared = vertices;
+  const auto breakpoints = std::make_shared<const std::vector<double>>(curve->breakpoints());
   out.push_back(std::move(run_.front()));
   for (std::size_t i = 1; i + 1 < n; ++i) {
     Move m = std::move(run_[i]);
-    m.curve = std::make_shared<CurvePiece>(curve, fit->vertex_u[i - 1], fit->vertex_u[i]);
+    m.curve = std::make_shared<CurvePiece>(curve, fit->vertex_u[i - 1], fit->vertex_u[i], breakpoints);
     m.length_mm = length(*m.curve);
     m.lines = ProgrammedLines{shared, i - 1, tol};
     out.push_back(std::move(m));

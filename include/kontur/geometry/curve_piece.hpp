@@ -4,13 +4,17 @@
 // lines and hands each programmed line on as its piece of that curve.
 #include <kontur/geometry/curve.hpp>
 #include <memory>
+#include <vector>
 
 namespace kontur {
 
 class CurvePiece final : public Curve {
  public:
-  /// `curve` on [u0, u1] (u_min <= u0 < u1 <= u_max of `curve`).
-  CurvePiece(std::shared_ptr<const Curve> curve, double u0, double u1);
+  /// `curve` on [u0, u1] (u_min <= u0 < u1 <= u_max of `curve`). `whole_breakpoints`: the whole
+  /// curve's breakpoints, shared by its pieces (else breakpoints() asks the curve each time, which
+  /// costs the whole curve's spans).
+  CurvePiece(std::shared_ptr<const Curve> curve, double u0, double u1,
+             std::shared_ptr<const std::vector<double>> whole_breakpoints = nullptr);
 
   [[nodiscard]] double u_min() const noexcept override { return u0_; }
   [[nodiscard]] double u_max() const noexcept override { return u1_; }
@@ -28,6 +32,7 @@ class CurvePiece final : public Curve {
  private:
   std::shared_ptr<const Curve> curve_;
   double u0_, u1_;
+  std::shared_ptr<const std::vector<double>> whole_breakpoints_;
 };
 
 }  // namespace kontur
