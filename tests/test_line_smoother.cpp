@@ -11,16 +11,20 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <kontur/geometry/curve_piece.hpp>
 #include <kontur/geometry/differential.hpp>
 #include <kontur/geometry/line_segment.hpp>
 #include <kontur/geometry/polyline_fit.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/program/line_smoother.hpp>
+#include <kontur/program/program_path.hpp>
 #include <kontur/verify/checker.hpp>
 #include <limits>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "support/occt_oracle.hpp"
@@ -272,6 +276,43 @@ TEST(LineSmoother, CheckerMeasuresSetpointsAgainstTheProgrammedLines) {
   EXPECT_FALSE(bad.passed(machine));
   EXPECT_GT(bad.max_smoothing_deviation_mm, 1.9 * tol);
   ASSERT_FALSE(bad.failures(machine).empty());
+}
+
+// The moves of `program_text` on the default machine, as `kontur run` makes them.
+std::vector<program::Move> path_of(const std::string& name, const std::string& program_text) {
+  const auto file = std::filesystem::temp_directory_path() / ("kontur_smoothing_" + name + ".ngc");
+  std::ofstream(file) << program_text;
+  const Machine machine = default_machine();
+  program::ProgramPath path(machine, true, true);
+  path.read(file.string(), {});
+  std::filesystem::remove(file);
+  return path.moves();
+}
+
+TEST(LineSmoother, G64P0IsG64WithoutPAsInLinuxCnc) {
+  // LinuxCNC: "G64 and G64 P0" blend without a tolerance of their own; Kontur keeps the machine's
+  // path tolerance for both (it never leaves a bounded tolerance), and P where it is given.
+  std::string lines;
+  for (int i = 1; i <= 40; ++i)
+    lines += "G1 X" + std::to_string(10.0 * std::sin(i * 0.02)) + " Y" +
+             std::to_string(10.0 * (1 - std::cos(i * 0.02))) + "\n";
+  auto tolerances = [](const std::vector<program::Move>& moves) {
+    std::vector<double> t;
+    for (const auto& m : moves)
+      if (m.lines) t.push_back(m.lines->tolerance_mm);
+    return t;
+  };
+  const double machine_tol = default_machine().path_tolerance_mm;
+  for (const char* mode : {"G64 P0", "G64"}) {
+    const auto t = tolerances(path_of("p0", std::string("G21 G90 F600 ") + mode + "\n" + lines + "M2\n"));
+    EXPECT_GT(t.size(), 30U) << mode;
+    for (double x : t) EXPECT_EQ(x, machine_tol) << mode;
+  }
+  const auto given = tolerances(path_of("p005", "G21 G90 F600 G64 P0.05\n" + lines + "M2\n"));
+  EXPECT_GT(given.size(), 30U);
+  for (double x : given) EXPECT_EQ(x, 0.05);
+  // G61: the exact path, nothing smoothed
+  EXPECT_TRUE(tolerances(path_of("g61", "G21 G90 F600 G61\n" + lines + "M2\n")).empty());
 }
 
 }  // namespace
