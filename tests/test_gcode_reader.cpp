@@ -132,6 +132,20 @@ TEST(GcodeReader, RFormLongArcFullCircleTurnsHelix) {
   EXPECT_EQ(read("F1\nG0 X0 Y0\nG2 X10.004 Y0 I5\n").size(), 2u);
 }
 
+TEST(GcodeReader, TinyCamBamArcStaysTinyNotAFullCircle) {
+  // CamBam writes arcs of 0.1 um (issue 13): counter-clockwise from X24.3929 to X24.3928 about a
+  // centre 0.5 mm away. A full circle is made only where the end is the start as computed (as in
+  // LinuxCNC); within 1e-4 mm it used to be a 3.14 mm loop, an unprogrammed gouge.
+  const auto b = read("G21 G17 F600\nG0 X24.3929 Y104.2273\nG3 X24.3928 I0.1128 J-0.4871\n");
+  ASSERT_EQ(b.size(), 2u);
+  EXPECT_LT(*b[1].length_mm(), 2e-4);
+  EXPECT_GT(*b[1].length_mm(), 0.5e-4);
+  expect_consistent(b[1]);
+  // the same arc programmed back to its start is still a full circle
+  const auto full = read("G21 G17 F600\nG0 X24.3929 Y104.2273\nG3 X24.3929 I0.1128 J-0.4871\n");
+  EXPECT_NEAR(*full[1].length_mm(), 2 * pi * std::hypot(0.1128, 0.4871), 1e-9);
+}
+
 TEST(GcodeReader, AbsoluteArcCentres) {
   const auto b = read("F100 G90.1\nG0 X20 Y10\nG3 X10 Y20 I10 J10\n");
   EXPECT_NEAR(*b[1].length_mm(), 5 * pi, 1e-12);

@@ -92,7 +92,10 @@ void Executor::arc(bool clockwise, const Vec3& to, int col) {
   const Vec3 v = e_p - centre;
   double angle = std::atan2(v.dot(f.e2), v.dot(f.e1));
   if (angle < 0.0) angle += 2.0 * pi;
-  if ((e_p - s_p).norm() <= tolerances::gcode_same_point_mm || angle <= 0.0) angle = 2.0 * pi;
+  // A full circle only where the end is the start as computed (LinuxCNC: the end angle equals the
+  // start angle), not within a tolerance: CAM output has arcs of 0.1 um (CamBam), and a circle there
+  // would be an unprogrammed loop.
+  if (e_p == s_p || angle <= 0.0) angle = 2.0 * pi;
   const double sweep = angle + 2.0 * pi * (turns - 1);
   const double rise = (to - pos).dot(f.normal);
   // to machine coordinates (rigid: rotation about Z and translation)
