@@ -146,6 +146,12 @@ TEST(GcodeReader, TinyCamBamArcStaysTinyNotAFullCircle) {
   EXPECT_NEAR(*full[1].length_mm(), 2 * pi * std::hypot(0.1128, 0.4871), 1e-9);
 }
 
+TEST(GcodeReader, ZeroOffsetAlongThePlaneNormalIsAccepted) {
+  // FreeCAD's posts write K0.000 on G17 arcs; the controls accept it. K1 is refused (bad/).
+  EXPECT_EQ(read("G21 G17 F600\nG0 X0 Y0\nG2 X10 Y0 Z0 I5 J0 K0.000\n").size(), 2u);
+  EXPECT_EQ(read("G21 G18 F600\nG0 X0 Z0\nG2 X10 Z0 I5 K0 J0\n").size(), 2u);
+}
+
 TEST(GcodeReader, AbsoluteArcCentres) {
   const auto b = read("F100 G90.1\nG0 X20 Y10\nG3 X10 Y20 I10 J10\n");
   EXPECT_NEAR(*b[1].length_mm(), 5 * pi, 1e-12);

@@ -17,8 +17,9 @@ void Executor::arc(bool clockwise, const Vec3& to, int col) {
   const char offset_letter[3] = {'I', 'J', 'K'};
   const char plane_name[3][3] = {"XY", "ZX", "YZ"};
   const int pidx = static_cast<int>(modal.plane);
-  // the offset word of the normal axis is not allowed
-  if (w->has(offset_letter[pa.n]))
+  // the offset word of the normal axis is not allowed, but for zero (FreeCAD's posts write
+  // `G2 X Y Z I J K0.000` in G17, which the controls they are written for accept)
+  if (w->has(offset_letter[pa.n]) && w->get(offset_letter[pa.n]) != 0.0)
     fail(w->col(offset_letter[pa.n]), "arc-offset",
          fmt::format("{}: {} not allowed for an arc in the {} plane (G{}), which uses {} and {}", word,
                      offset_letter[pa.n], plane_name[pidx], pidx == 0 ? 17 : pidx == 1 ? 18 : 19,
