@@ -78,14 +78,21 @@ inline constexpr int time_optimal_max_refinement = 40;
 inline constexpr double time_optimal_grid_relative = 1e-4;
 
 // ---- G-code programs (kontur/gcode); all in [mm] after unit conversion (1 in = 25.4 mm)
-/// Arc radius check of a control: the distances from the centre to the start and to the end of a
-/// G2/G3 arc (or |R| and the I J K radius when both are given) may differ by at most
-/// max(gcode_arc_radius_absolute_mm, gcode_arc_radius_relative * radius). The curve uses the
-/// start radius and its radius changes linearly with the angle to the end radius (a slight spiral,
-/// as LinuxCNC does), so that the arc ends exactly at the programmed end point.
-inline constexpr double gcode_arc_radius_absolute_mm = 0.005;
+/// Arc radius check of a control (LinuxCNC's): the distances from the centre to the start and to
+/// the end of a G2/G3 arc (or |R| and the I J K radius when both are given) may differ by the
+/// absolute tolerance (gcode_arc_radius_absolute_mm in a mm program, gcode_arc_radius_absolute_inch
+/// in an inch program), or by up to gcode_arc_radius_relative_cap times that where the difference
+/// is within gcode_arc_radius_relative of the radius. The curve uses the start radius and its
+/// radius changes linearly with the angle to the end radius (a slight spiral, as LinuxCNC does),
+/// so that the arc ends exactly at the programmed end point; above gcode_arc_radius_warning_mm the
+/// reader warns.
+inline constexpr double gcode_arc_radius_absolute_mm = 0.0283;    // 2 * 0.01 * sqrt(2) [mm]
+inline constexpr double gcode_arc_radius_absolute_inch = 0.00283; // 2 * 0.001 * sqrt(2) [in]
 /// Relative part of the arc radius check (0.1 % of the radius).
 inline constexpr double gcode_arc_radius_relative = 1e-3;
+inline constexpr double gcode_arc_radius_relative_cap = 100.0;
+/// A radius difference above this is read with a warning [mm].
+inline constexpr double gcode_arc_radius_warning_mm = 0.005;
 /// (An R-form arc whose chord exceeds 2 |R| by at most that tolerance is taken as a half circle.)
 /// Two points closer than this are the same point: the end of a full circle, the first control point
 /// of a G06.2 / G6.2 curve and the current position. (3-D circles and conics use the
