@@ -387,6 +387,20 @@ TEST(GcodeReader, UnusedWordsWarnAndTheRunGoesOn) {
   EXPECT_NE(r.warnings()[1].find("G96: constant surface speed is recorded"), std::string::npos);
 }
 
+TEST(GcodeReader, MachineSpecificMCodesWarnOnceAndAreIgnored) {
+  // M25, M40, M75 (Haas, Fanuc posts), M101 (a user M code): they do not move the axes (issue 13).
+  Reader r("t.ngc", "G21 F100\nM25\nG1 X10 M40\nM25\nM101\nM101\nG1 X20\nM2\n");
+  Block b;
+  int n = 0;
+  while (r.next(b)) ++n;
+  EXPECT_EQ(n, 2);
+  ASSERT_EQ(r.warning_count(), 3u);  // once per code
+  EXPECT_EQ(r.warnings()[0],
+            "t.ngc:2:1: warning: M25: machine-specific M code, ignored (it does not move the axes; warned once)");
+  EXPECT_NE(r.warnings()[1].find("M40: machine-specific M code"), std::string::npos);
+  EXPECT_NE(r.warnings()[2].find("M101: user M code"), std::string::npos);
+}
+
 TEST(GcodeReader, NothingAfterAnError) {
   Reader r("t.ngc", "F100\nG1 X1\nG1 X[1/0]\nG1 X3\n");
   Block b;
