@@ -401,6 +401,22 @@ TEST(GcodeReader, MachineSpecificMCodesWarnOnceAndAreIgnored) {
   EXPECT_NE(r.warnings()[2].find("M101: user M code"), std::string::npos);
 }
 
+TEST(GcodeReader, FanucAndHaasProgramNumbersAreTheProgramsName) {
+  // The headers of Fanuc and Haas programs (issue 13: 27 real programs stopped there).
+  for (const char* header : {"%\nO1234 (TEST PART)\n", "%O1200(NAME)\n", ":0097\n", "O01023 (NAME)\n"}) {
+    Reader r("t.ngc", std::string(header) + "G21 G90 F100\nG1 X10\nM30\n%\n");
+    Block b;
+    int n = 0;
+    while (r.next(b)) ++n;
+    EXPECT_EQ(n, 1) << header;
+    ASSERT_EQ(r.warning_count(), 1u) << header;
+    EXPECT_NE(r.warnings()[0].find("a program number (Fanuc, Haas)"), std::string::npos) << header;
+  }
+  // LinuxCNC O-words keep their meaning, and '%' is followed by nothing else
+  EXPECT_NE(error_of("o100 fly\n"), "");
+  EXPECT_NE(error_of("%G1 X1\n").find("or be followed by a program number"), std::string::npos);
+}
+
 TEST(GcodeReader, NothingAfterAnError) {
   Reader r("t.ngc", "F100\nG1 X1\nG1 X[1/0]\nG1 X3\n");
   Block b;
