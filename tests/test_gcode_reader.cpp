@@ -2,14 +2,14 @@
 // (start, end, points the curve must pass through, length), modal state, units, offsets,
 // canned cycles, parameters and expressions.
 #include <gtest/gtest.h>
-
-#include <cmath>
-#include <cstdio>
-#include <fstream>
 #include <kontur/error.hpp>
 #include <kontur/gcode/expression.hpp>
 #include <kontur/gcode/reader.hpp>
 #include <kontur/geometry/length.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -93,9 +93,8 @@ TEST(GcodeReader, InchAndIncremental) {
 
 TEST(GcodeReader, ArcsInThreePlanesAndBothDirections) {
   // quarter circles of radius 10 from (10,0) about the origin, counter-clockwise (G3) and clockwise (G2)
-  const auto b = read(
-      "F100\nG17 G0 X10 Y0 Z0\nG3 X0 Y10 I-10 J0\nG0 X10 Y0\nG2 X0 Y-10 R10\n"
-      "G18 G0 X10 Y0 Z0\nG2 Z10 X0 K0 I-10\nG19 G0 X0 Y10 Z0\nG2 Y0 Z-10 J-10 K0\n");
+  const auto b = read("F100\nG17 G0 X10 Y0 Z0\nG3 X0 Y10 I-10 J0\nG0 X10 Y0\nG2 X0 Y-10 R10\n"
+                      "G18 G0 X10 Y0 Z0\nG2 Z10 X0 K0 I-10\nG19 G0 X0 Y10 Z0\nG2 Y0 Z-10 J-10 K0\n");
   ASSERT_EQ(b.size(), 8u);
   const Block& ccw = b[1];
   EXPECT_EQ(ccw.type, BlockType::arc);
@@ -118,7 +117,7 @@ TEST(GcodeReader, ArcsInThreePlanesAndBothDirections) {
 TEST(GcodeReader, RFormLongArcFullCircleTurnsHelix) {
   const auto b = read("F100\nG0 X0 Y0\nG2 X10 Y0 R-5\nG3 X10 Y0 I5 J0\nG3 X10 Y0 I5 P3\nG2 X10 Y0 Z-6 I-5 P2\n");
   ASSERT_EQ(b.size(), 5u);
-  EXPECT_NEAR(*b[1].length_mm(), 5 * pi, 1e-9);   // R-5 from (0,0) to (10,0): a half circle either way
+  EXPECT_NEAR(*b[1].length_mm(), 5 * pi, 1e-9);  // R-5 from (0,0) to (10,0): a half circle either way
   EXPECT_NEAR(*b[2].length_mm(), 10 * pi, 1e-9);  // full circle
   EXPECT_NEAR(*b[3].length_mm(), 30 * pi, 1e-9);  // three turns
   EXPECT_EQ(b[4].type, BlockType::helix);
@@ -147,11 +146,13 @@ TEST(GcodeReader, TinyCamBamArcStaysTinyNotAFullCircle) {
   EXPECT_NEAR(*full[1].length_mm(), 2 * pi * std::hypot(0.1128, 0.4871), 1e-9);
 }
 
+
 TEST(GcodeReader, ZeroOffsetAlongThePlaneNormalIsAccepted) {
   // FreeCAD's posts write K0.000 on G17 arcs; the controls accept it. K1 is refused (bad/).
   EXPECT_EQ(read("G21 G17 F600\nG0 X0 Y0\nG2 X10 Y0 Z0 I5 J0 K0.000\n").size(), 2u);
   EXPECT_EQ(read("G21 G18 F600\nG0 X0 Z0\nG2 X10 Z0 I5 K0 J0\n").size(), 2u);
 }
+
 
 TEST(GcodeReader, ArcRadiusToleranceIsLinuxCncs) {
   // Centre (r, 0): radius r to the start, r + d to the end (X 2r + d on the axis).
@@ -168,6 +169,7 @@ TEST(GcodeReader, ArcRadiusToleranceIsLinuxCncs) {
   EXPECT_THROW(arc("G21", 5000, 10003.0), InputError);  // 3 mm: within 0.1 % but over 2.83 mm
 }
 
+
 TEST(GcodeReader, AbsoluteArcCentres) {
   const auto b = read("F100 G90.1\nG0 X20 Y10\nG3 X10 Y20 I10 J10\n");
   EXPECT_NEAR(*b[1].length_mm(), 5 * pi, 1e-12);
@@ -175,22 +177,20 @@ TEST(GcodeReader, AbsoluteArcCentres) {
 }
 
 TEST(GcodeReader, WorkOffsetsG92AndRotation) {
-  const auto b = read(
-      "G10 L2 P2 X100 Y50 Z0\nG55 G0 X1 Y2\nG54 G0 X1 Y2\nG92 X0 Y0\nG0 X1\nG92.1\n"
-      "G10 L2 P1 X0 Y0 R90\nG0 X10 Y0\nG53 G0 X3 Y4\n");
+  const auto b = read("G10 L2 P2 X100 Y50 Z0\nG55 G0 X1 Y2\nG54 G0 X1 Y2\nG92 X0 Y0\nG0 X1\nG92.1\n"
+                      "G10 L2 P1 X0 Y0 R90\nG0 X10 Y0\nG53 G0 X3 Y4\n");
   ASSERT_EQ(b.size(), 5u);
   expect_near(b[0].end, Vec3(101, 52, 0));
   expect_near(b[1].end, Vec3(1, 2, 0));
-  expect_near(b[2].end, Vec3(2, 2, 0));          // G92 made (1,2) the origin
-  expect_near(b[3].end, Vec3(0, 10, 0), 1e-12);  // rotated by 90 degrees about Z
-  expect_near(b[4].end, Vec3(3, 4, 0), 1e-12);   // G53: machine coordinates
+  expect_near(b[2].end, Vec3(2, 2, 0));           // G92 made (1,2) the origin
+  expect_near(b[3].end, Vec3(0, 10, 0), 1e-12);   // rotated by 90 degrees about Z
+  expect_near(b[4].end, Vec3(3, 4, 0), 1e-12);    // G53: machine coordinates
   EXPECT_EQ(b[0].modal.work_offset, 2);
 }
 
 TEST(GcodeReader, FanucNurbsMatchesTheCurveItDescribes) {
-  const auto b = read(
-      "G0 X-100 Y-60 Z0\nF100\nG06.2 P4 K0 X-100 Y-60 Z0 R1\nK0 X-100 Y0\nK0 X-40 Y70\nK0 X60 Y90\n"
-      "K0.5 X30 Y120\nK1\nK1\nK1\nK1\nG1 X0 Y0\n");
+  const auto b = read("G0 X-100 Y-60 Z0\nF100\nG06.2 P4 K0 X-100 Y-60 Z0 R1\nK0 X-100 Y0\nK0 X-40 Y70\nK0 X60 Y90\n"
+                      "K0.5 X30 Y120\nK1\nK1\nK1\nK1\nG1 X0 Y0\n");
   ASSERT_EQ(b.size(), 3u);
   EXPECT_EQ(b[1].type, BlockType::nurbs);
   const auto& c = std::get<NurbsCurve>(b[1].geometry);
@@ -206,9 +206,7 @@ TEST(GcodeReader, FanucNurbsMatchesTheCurveItDescribes) {
 }
 
 TEST(GcodeReader, LinuxcncG62WithClosingBlocksAndQ) {
-  Reader r(
-      "t.ngc",
-      "G0 X0 Y0\nF100\nG6.2 X0 Y0 R1 K0 P3 Q1\nX1 Y1 R2 K0\nX2 Y0 R1 K0\nX3 Y1 R1 K1\nG6.2 K2\nG6.2 K2\nG6.2 K2\nM2\n");
+  Reader r("t.ngc", "G0 X0 Y0\nF100\nG6.2 X0 Y0 R1 K0 P3 Q1\nX1 Y1 R2 K0\nX2 Y0 R1 K0\nX3 Y1 R1 K1\nG6.2 K2\nG6.2 K2\nG6.2 K2\nM2\n");
   Block b;
   ASSERT_TRUE(r.next(b));
   ASSERT_TRUE(r.next(b));
@@ -294,11 +292,11 @@ TEST(GcodeReader, CannedCyclesExpandIntoMoves) {
   auto b = read("G17 G21 G90 F100\nG0 X0 Y0 Z10\nG98 G81 X5 Y0 Z-5 R2\nX10\nG80\n");
   ASSERT_EQ(b.size(), 1u + 4u + 4u);
   EXPECT_EQ(b[1].canned_cycle, 81);
-  expect_near(b[1].end, Vec3(5, 0, 10));  // rapid XY at the initial Z
-  expect_near(b[2].end, Vec3(5, 0, 2));   // rapid to R
+  expect_near(b[1].end, Vec3(5, 0, 10));   // rapid XY at the initial Z
+  expect_near(b[2].end, Vec3(5, 0, 2));    // rapid to R
   EXPECT_EQ(b[3].type, BlockType::line);
-  expect_near(b[3].end, Vec3(5, 0, -5));  // feed to the bottom
-  expect_near(b[4].end, Vec3(5, 0, 10));  // G98: back to the initial Z
+  expect_near(b[3].end, Vec3(5, 0, -5));   // feed to the bottom
+  expect_near(b[4].end, Vec3(5, 0, 10));   // G98: back to the initial Z
   expect_near(b[8].end, Vec3(10, 0, 10));
   // G99 retracts to R; G82 dwells at the bottom
   b = read("F100\nG0 X0 Y0 Z10\nG99 G82 X5 Z-5 R2 P0.5\n");
@@ -317,10 +315,8 @@ TEST(GcodeReader, CannedCyclesExpandIntoMoves) {
   double highest_after_first_feed = -1e9;
   bool fed = false;
   for (const auto& x : b) {
-    if (x.type == BlockType::line)
-      fed = true;
-    else if (fed && &x != &b.back())
-      highest_after_first_feed = std::max(highest_after_first_feed, x.end.z());
+    if (x.type == BlockType::line) fed = true;
+    else if (fed && &x != &b.back()) highest_after_first_feed = std::max(highest_after_first_feed, x.end.z());
   }
   EXPECT_LT(highest_after_first_feed, 2.0);
   expect_near(b.back().end, Vec3(0, 0, 10));
@@ -348,8 +344,7 @@ TEST(GcodeReader, DwellInverseTimeAndModalState) {
 }
 
 TEST(GcodeReader, ParametersAssignedAfterTheLine) {
-  const auto b =
-      read("#1=2 #2=[#1+1]\nF100\nG1 X#1 Y#2\n#<_scale> = 3.0\n#<x> = [#<_scale> * 2]\nG1 X#<x> Y[#<X> ** 2]\n");
+  const auto b = read("#1=2 #2=[#1+1]\nF100\nG1 X#1 Y#2\n#<_scale> = 3.0\n#<x> = [#<_scale> * 2]\nG1 X#<x> Y[#<X> ** 2]\n");
   ASSERT_EQ(b.size(), 2u);
   expect_near(b[0].end, Vec3(2, 1, 0));  // #2 = old #1 (0) + 1
   expect_near(b[1].end, Vec3(6, 36, 0));
@@ -401,6 +396,7 @@ TEST(GcodeReader, MachineSpecificMCodesWarnOnceAndAreIgnored) {
   EXPECT_NE(r.warnings()[2].find("M101: user M code"), std::string::npos);
 }
 
+
 TEST(GcodeReader, FanucAndHaasProgramNumbersAreTheProgramsName) {
   // The headers of Fanuc and Haas programs (issue 13: 27 real programs stopped there).
   for (const char* header : {"%\nO1234 (TEST PART)\n", "%O1200(NAME)\n", ":0097\n", "O01023 (NAME)\n"}) {
@@ -417,6 +413,7 @@ TEST(GcodeReader, FanucAndHaasProgramNumbersAreTheProgramsName) {
   EXPECT_NE(error_of("%G1 X1\n").find("or be followed by a program number"), std::string::npos);
 }
 
+
 TEST(GcodeReader, NothingAfterAnError) {
   Reader r("t.ngc", "F100\nG1 X1\nG1 X[1/0]\nG1 X3\n");
   Block b;
@@ -426,9 +423,8 @@ TEST(GcodeReader, NothingAfterAnError) {
 }
 
 TEST(GcodeReader, OWordSubroutineWithArgumentsAndReturnValue) {
-  const auto b = read(
-      "F100\no<square> sub\nG1 X#1 Y0\nG1 Y#1\no<square> endsub [#1 * 2]\n#1 = 7\n"
-      "o<square> call [3]\nG1 X#1 Y#<_value>\no<square> call [5]\nM2\n");
+  const auto b = read("F100\no<square> sub\nG1 X#1 Y0\nG1 Y#1\no<square> endsub [#1 * 2]\n#1 = 7\n"
+                      "o<square> call [3]\nG1 X#1 Y#<_value>\no<square> call [5]\nM2\n");
   ASSERT_EQ(b.size(), 5u);
   expect_near(b[0].end, Vec3(3, 0, 0));
   expect_near(b[1].end, Vec3(3, 3, 0));
@@ -439,11 +435,10 @@ TEST(GcodeReader, OWordSubroutineWithArgumentsAndReturnValue) {
 
 TEST(GcodeReader, OWordLoopsAndConditionals) {
   // while with break, do-while, repeat with continue, if/elseif/else
-  const auto b = read(
-      "F100\n#1=0\no1 while [#1 LT 10]\n#1=[#1+1]\no2 if [#1 EQ 4]\no1 break\no2 endif\nG1 X#1\n"
-      "o1 endwhile\n#2=0\no3 do\n#2=[#2+1]\nG1 Y#2\no3 while [#2 LT 2]\n"
-      "#3=0\no4 repeat [4]\n#3=[#3+1]\no5 if [#3 EQ 2]\no4 continue\no5 elseif [#3 EQ 3]\nG1 Z-3\n"
-      "o5 else\nG1 Z#3\no5 endif\no4 endrepeat\nM2\n");
+  const auto b = read("F100\n#1=0\no1 while [#1 LT 10]\n#1=[#1+1]\no2 if [#1 EQ 4]\no1 break\no2 endif\nG1 X#1\n"
+                      "o1 endwhile\n#2=0\no3 do\n#2=[#2+1]\nG1 Y#2\no3 while [#2 LT 2]\n"
+                      "#3=0\no4 repeat [4]\n#3=[#3+1]\no5 if [#3 EQ 2]\no4 continue\no5 elseif [#3 EQ 3]\nG1 Z-3\n"
+                      "o5 else\nG1 Z#3\no5 endif\no4 endrepeat\nM2\n");
   std::vector<double> xs, ys, zs;
   for (const auto& x : b) {
     xs.push_back(x.end.x());

@@ -1,12 +1,12 @@
 // Circular blocks: G2 / G3 arcs and helices in a plane (I J K or R, P turns), the 3-D circle
 // through an intermediate point (Sinumerik CIP, Fanuc G02.4 / G03.4), and Kontur's CONIC block.
-#include <algorithm>
-#include <cmath>
-#include <cstring>
+#include "executor.hpp"
 #include <kontur/geometry/circle_through_points.hpp>
 #include <kontur/geometry/conic_through_points.hpp>
 
-#include "executor.hpp"
+#include <algorithm>
+#include <cmath>
+#include <cstring>
 
 namespace kontur::gcode::detail {
 
@@ -22,10 +22,7 @@ void Executor::arc(bool clockwise, const Vec3& to, int col) {
   if (w->has(offset_letter[pa.n]) && w->get(offset_letter[pa.n]) != 0.0)
     fail(w->col(offset_letter[pa.n]), "arc-offset",
          fmt::format("{}: {} not allowed for an arc in the {} plane (G{}), which uses {} and {}", word,
-                     offset_letter[pa.n], plane_name[pidx],
-                     pidx == 0   ? 17
-                     : pidx == 1 ? 18
-                                 : 19,
+                     offset_letter[pa.n], plane_name[pidx], pidx == 0 ? 17 : pidx == 1 ? 18 : 19,
                      offset_letter[pa.a1], offset_letter[pa.a2]));
   const bool has_ijk = w->has(offset_letter[pa.a1]) || w->has(offset_letter[pa.a2]);
   const bool has_r = w->has('R');
@@ -36,8 +33,7 @@ void Executor::arc(bool clockwise, const Vec3& to, int col) {
   if (w->has('P')) {
     const double p = w->get('P');
     if (p != std::floor(p) || p < 1.0 || p > tolerances::gcode_max_arc_turns)
-      fail(w->col('P'), "arc-turns",
-           fmt::format("{} P{}: turns must be an integer 1..{}", word, num(p), tolerances::gcode_max_arc_turns));
+      fail(w->col('P'), "arc-turns", fmt::format("{} P{}: turns must be an integer 1..{}", word, num(p), tolerances::gcode_max_arc_turns));
     turns = static_cast<int>(p);
   }
   const Vec3 n = unit(pa.n), e_a1 = unit(pa.a1), e_a2 = unit(pa.a2);
@@ -48,25 +44,19 @@ void Executor::arc(bool clockwise, const Vec3& to, int col) {
   // 0.00283 in in an inch program), or up to 100 times that where it is within 0.1 % of the radius.
   const double tol_abs = modal.units == Units::inch ? tolerances::gcode_arc_radius_absolute_inch * 25.4
                                                     : tolerances::gcode_arc_radius_absolute_mm;
-  auto radius_ok = [&](double difference, double radius) {
-    return difference <= tol_abs || (difference <= tolerances::gcode_arc_radius_relative * radius &&
-                                     difference <= tolerances::gcode_arc_radius_relative_cap * tol_abs);
-  };
-  auto allowed = [&](double radius) {
+  auto allowed = [&](double radius) {  // the largest difference of radii accepted [mm]
     return std::min(std::max(tol_abs, tolerances::gcode_arc_radius_relative * radius),
                     tolerances::gcode_arc_radius_relative_cap * tol_abs);
   };
   if (has_ijk) {
     const double i1 = w->has(offset_letter[pa.a1]) ? w->get(offset_letter[pa.a1]) * scale() : 0.0;
     const double i2 = w->has(offset_letter[pa.a2]) ? w->get(offset_letter[pa.a2]) * scale() : 0.0;
-    if (modal.arc_distance == DistanceMode::incremental)
-      centre = s_p + i1 * e_a1 + i2 * e_a2;
-    else
-      centre = i1 * e_a1 + i2 * e_a2;
+    if (modal.arc_distance == DistanceMode::incremental) centre = s_p + i1 * e_a1 + i2 * e_a2;
+    else centre = i1 * e_a1 + i2 * e_a2;
     if (has_r) {
       const double r_ijk = (s_p - centre).norm();
       const double r = std::abs(w->get('R') * scale());
-      if (!radius_ok(std::abs(r_ijk - r), r))
+      if (std::abs(r_ijk - r) > allowed(r))
         fail(w->col('R'), "arc-r-inconsistent",
              fmt::format("{}: R{} and the radius {} mm of {} {} disagree: I/J/K inconsistent with R", word,
                          num(w->get('R')), num(r_ijk), offset_letter[pa.a1], offset_letter[pa.a2]));
@@ -80,11 +70,10 @@ void Executor::arc(bool clockwise, const Vec3& to, int col) {
       fail(col, "arc-r-full-circle",
            fmt::format("{} R{}: the end point is the start point; a full circle needs {} {} (the centre)", word,
                        num(w->get('R')), offset_letter[pa.a1], offset_letter[pa.a2]));
-    if (!(r > 0.0))
-      fail(w->col('R'), "arc-radius", fmt::format("{} R{}: radius must not be zero", word, num(w->get('R'))));
+    if (!(r > 0.0)) fail(w->col('R'), "arc-radius", fmt::format("{} R{}: radius must not be zero", word, num(w->get('R'))));
     double h2 = r * r - c * c / 4.0;
     if (h2 < 0.0) {
-      if (!radius_ok(c / 2.0 - r, r))
+      if (c / 2.0 - r > allowed(r))
         fail(w->col('R'), "arc-radius-too-small",
              fmt::format("{} R{}: radius smaller than half the distance {} mm from start to end", word,
                          num(w->get('R')), num(c)));
@@ -97,13 +86,12 @@ void Executor::arc(bool clockwise, const Vec3& to, int col) {
   }
   const double r_start = (s_p - centre).norm(), r_end = (e_p - centre).norm();
   if (!(r_start > tolerances::gcode_same_point_mm))
-    fail(col, "arc-radius",
-         fmt::format("{}: the centre {} is the start point (radius zero)", word, point_text(centre)));
-  const double mismatch = std::abs(r_start - r_end);
-  if (!radius_ok(mismatch, std::max(r_start, r_end)))
+    fail(col, "arc-radius", fmt::format("{}: the centre {} is the start point (radius zero)", word, point_text(centre)));
+  const double mismatch = std::abs(r_start - r_end), r_max = std::max(r_start, r_end);
+  if (mismatch > allowed(r_max))
     fail(col, "arc-radius-mismatch",
          fmt::format("{}: radius to the start {} mm and to the end {} mm differ by {} mm (more than {} mm)", word,
-                     num(r_start), num(r_end), num(mismatch), num(allowed(std::max(r_start, r_end)))));
+                     num(r_start), num(r_end), num(mismatch), num(allowed(r_max))));
   if (mismatch > tolerances::gcode_arc_radius_warning_mm)
     warn(col, fmt::format("{}: radius to the start {} mm and to the end {} mm differ by {} mm: the arc is a spiral "
                           "that ends at the programmed point",
@@ -199,8 +187,7 @@ void Executor::cip(const Vec3& to, int col) {
     for (int a = 0; a < 3; ++a)
       if (w->has_indexed(p, a))
         fail(w->indexed_column[static_cast<std::size_t>(p)][static_cast<std::size_t>(a)], "cip-words",
-             fmt::format("CIP: {}{}= not allowed (CIP has one intermediate point I1= J1= K1=)",
-                         static_cast<char>('I' + a), p + 1));
+             fmt::format("CIP: {}{}= not allowed (CIP has one intermediate point I1= J1= K1=)", static_cast<char>('I' + a), p + 1));
   if (!(w->indexed_present & 7u))
     fail(col, "cip-intermediate-missing", "CIP: intermediate point missing (I1= J1= K1=)");
   if (!has_axes()) fail(col, "cip-end-missing", "CIP: end point missing (X Y Z)");
@@ -219,7 +206,7 @@ void Executor::conic(const Vec3& to, int col) {
   if (!has_axes()) fail(col, "conic-words", "CONIC: end point missing (X Y Z)");
   const Feed feed = feed_move("CONIC");
   const std::array<Vec3, 5> pts{to_machine(pos), to_machine(indexed_point(0)), to_machine(indexed_point(1)),
-                                to_machine(indexed_point(2)), to_machine(to)};
+                                 to_machine(indexed_point(2)), to_machine(to)};
   Block b = make_block(BlockType::conic, col);
   b.start = pts[0];
   b.end = pts[4];

@@ -27,13 +27,7 @@ void Executor::execute(const Words& words) {
   set_spindle(codes);
   set_coolant(codes);
   warn_io_codes(codes);
-  for (int i = 0; i < codes.ignored_m_count; ++i) {
-    const int m = codes.ignored_m[static_cast<std::size_t>(i)];
-    if (!warned_m_codes.insert(m).second) continue;  // once per code
-    warn(codes.ignored_m_column[static_cast<std::size_t>(i)],
-         fmt::format("M{}: {} M code, ignored (it does not move the axes; warned once)", m,
-                     m >= 100 && m <= 199 ? "user" : "machine-specific"));
-  }
+  warn_ignored_m_codes(codes);
   if (codes.code(g_nonmodal) == 40) dwell(codes.column(g_nonmodal));
   set_plane(codes);
   set_tool_length(codes);
@@ -49,8 +43,7 @@ void Executor::execute(const Words& words) {
 }
 
 void Executor::before_control_flow(int column) {
-  if (spline == Spline::g52)
-    fail(column, "g52-open", "O-word inside an open G5.2 NURBS block (close it with G5.3 first)");
+  if (spline == Spline::g52) fail(column, "g52-open", "O-word inside an open G5.2 NURBS block (close it with G5.3 first)");
   if (spline == Spline::g62) finish_g62();
 }
 
@@ -81,13 +74,12 @@ void Executor::check_values() const {
     const bool length_word = std::strchr("XYZIJKRQ", letter) != nullptr;
     const double limit = length_word ? tolerances::gcode_max_coordinate_mm : tolerances::gcode_max_value;
     if (!(std::abs(v) <= limit))
-      fail(w->col(letter), "value-range",
-           fmt::format("{}{}: beyond the supported range +-{}", letter, num(v), num(limit)));
+      fail(w->col(letter), "value-range", fmt::format("{}{}: beyond the supported range +-{}", letter, num(v), num(limit)));
   }
   for (int p = 0; p < 3; ++p)
     for (int a = 0; a < 3; ++a)
-      if (w->has_indexed(p, a) && !(std::abs(w->indexed[static_cast<std::size_t>(p)][static_cast<std::size_t>(a)]) <=
-                                    tolerances::gcode_max_coordinate_mm))
+      if (w->has_indexed(p, a) &&
+          !(std::abs(w->indexed[static_cast<std::size_t>(p)][static_cast<std::size_t>(a)]) <= tolerances::gcode_max_coordinate_mm))
         fail(w->indexed_column[static_cast<std::size_t>(p)][static_cast<std::size_t>(a)], "value-range",
              fmt::format("{}{}=: beyond the supported range", static_cast<char>('I' + a), p + 1));
 }
@@ -142,18 +134,15 @@ void Executor::set_feed_rate() {
   if (!w->has('F')) return;
   const double f = w->get('F');
   if (f < 0.0) fail(w->col('F'), "feed-range", fmt::format("F{}: feed must be >= 0", num(f)));
-  if (modal.feed_mode == FeedMode::units_per_minute)
-    feed_mm_per_min = f * scale();
-  else if (!(f > 0.0))
-    fail(w->col('F'), "feed-range", fmt::format("F{}: inverse-time feed must be > 0", num(f)));
+  if (modal.feed_mode == FeedMode::units_per_minute) feed_mm_per_min = f * scale();
+  else if (!(f > 0.0)) fail(w->col('F'), "feed-range", fmt::format("F{}: inverse-time feed must be > 0", num(f)));
 }
 
 // ---------------------------------------------------------------- spindle, tool, coolant (recorded; M groups 6-8, 5)
 
 void Executor::set_spindle_speed() {
   if (!w->has('S')) return;
-  if (w->get('S') < 0.0)
-    fail(w->col('S'), "spindle-range", fmt::format("S{}: spindle speed must be >= 0", num(w->get('S'))));
+  if (w->get('S') < 0.0) fail(w->col('S'), "spindle-range", fmt::format("S{}: spindle speed must be >= 0", num(w->get('S'))));
   modal.spindle_rpm = w->get('S');
 }
 
@@ -164,8 +153,7 @@ void Executor::set_tool(const BlockCodes& codes) {
 
 void Executor::set_spindle(const BlockCodes& codes) {
   const int m = codes.m_code(m_spindle);
-  if (m >= 0)
-    modal.spindle = m == 3 ? SpindleState::clockwise : m == 4 ? SpindleState::counter_clockwise : SpindleState::off;
+  if (m >= 0) modal.spindle = m == 3 ? SpindleState::clockwise : m == 4 ? SpindleState::counter_clockwise : SpindleState::off;
 }
 
 void Executor::set_coolant(const BlockCodes& codes) {
@@ -174,6 +162,16 @@ void Executor::set_coolant(const BlockCodes& codes) {
   if (m == 7) modal.mist = true;
   if (m == 8) modal.flood = true;
   if (m == 9) modal.mist = modal.flood = false;
+}
+
+void Executor::warn_ignored_m_codes(const BlockCodes& codes) {
+  for (int i = 0; i < codes.ignored_m_count; ++i) {
+    const int m = codes.ignored_m[static_cast<std::size_t>(i)];
+    if (!warned_m_codes.insert(m).second) continue;  // once per code
+    warn(codes.ignored_m_column[static_cast<std::size_t>(i)],
+         fmt::format("M{}: {} M code, ignored (it does not move the axes; warned once)", m,
+                     m >= 100 && m <= 199 ? "user" : "machine-specific"));
+  }
 }
 
 void Executor::warn_io_codes(const BlockCodes& codes) {
@@ -195,8 +193,7 @@ void Executor::set_tool_length(const BlockCodes& codes) {
   if (g == 430) {
     if (w->has('H')) {
       const double h = w->get('H');
-      if (h < 0.0 || h != std::floor(h))
-        fail(w->col('H'), "tool-range", fmt::format("H{}: must be an integer >= 0", num(h)));
+      if (h < 0.0 || h != std::floor(h)) fail(w->col('H'), "tool-range", fmt::format("H{}: must be an integer >= 0", num(h)));
       modal.tool_length_h = static_cast<int>(h);
     } else {
       modal.tool_length_h = modal.tool;
@@ -239,8 +236,7 @@ void Executor::set_retract_mode(const BlockCodes& codes) {
 
 void Executor::set_spindle_mode(const BlockCodes& codes) {
   if (codes.code(g_spindle_mode) == 960)
-    warn(codes.column(g_spindle_mode),
-         "G96: constant surface speed is recorded, not simulated (the path feed is unchanged)");
+    warn(codes.column(g_spindle_mode), "G96: constant surface speed is recorded, not simulated (the path feed is unchanged)");
 }
 
 void Executor::reject_spline_end(const BlockCodes& codes) {
@@ -259,9 +255,8 @@ void Executor::run_motion(const BlockCodes& codes, bool machine_coordinates) {
   if (w->keyword == Keyword::cip) motion = motion_cip;
   if (w->keyword == Keyword::conic) motion = motion_conic;
   const bool starts_motion = motion_word >= 0 || w->keyword != Keyword::none;
-  const int motion_col = motion_word >= 0              ? codes.column(g_motion)
-                         : w->keyword != Keyword::none ? w->keyword_column
-                                                       : block_column();
+  const int motion_col =
+      motion_word >= 0 ? codes.column(g_motion) : w->keyword != Keyword::none ? w->keyword_column : block_column();
   const bool axes_for_motion = has_axes() && !nonmodal_uses_axes;
   const bool is_cycle = is_canned_cycle(motion);
   if (is_cycle && !is_canned_cycle(modal.motion_g10)) {
@@ -311,8 +306,7 @@ void Executor::warn_unused_words(int motion, int nonmodal, int path, int tool_le
   for (int c = 0; c < 26; ++c) {
     const char letter = static_cast<char>('A' + c);
     if (letter == 'G' || letter == 'M' || !w->has(letter) || used.find(letter) != std::string::npos) continue;
-    warn(w->col(letter),
-         fmt::format("{}{}: not used by any code of this block (ignored)", letter, num(w->get(letter))));
+    warn(w->col(letter), fmt::format("{}{}: not used by any code of this block (ignored)", letter, num(w->get(letter))));
   }
 }
 
@@ -320,47 +314,17 @@ void Executor::move(int motion, int col, bool machine_coordinates, int motion_wo
   const Vec3 to = target(machine_coordinates);
   if (motion != 50 && motion != 51) prev_g5 = false;
   switch (motion) {
-    case 0:
-      line_move(BlockType::rapid, to, col, Feed{});
-      prev_g5 = false;
-      return;
-    case 10:
-      line_move(BlockType::line, to, col, feed_move("G1"));
-      prev_g5 = false;
-      return;
-    case 20:
-    case 30:
-      arc(motion == 20, to, col);
-      prev_g5 = false;
-      return;
-    case 50:
-    case 51:
-      bezier(motion == 50, to, col);
-      return;
-    case 52:
-      start_g52(col);
-      return;
-    case 62:
-      start_g62(col, motion_word);
-      return;
-    case 24:
-    case 34:
-      circle_block(motion, col);
-      return;
-    case motion_cip:
-      cip(to, col);
-      return;
-    case motion_conic:
-      conic(to, col);
-      return;
-    case 730:
-    case 810:
-    case 820:
-    case 830:
-      cycle(motion, col);
-      return;
-    default:
-      break;
+    case 0: line_move(BlockType::rapid, to, col, Feed{}); prev_g5 = false; return;
+    case 10: line_move(BlockType::line, to, col, feed_move("G1")); prev_g5 = false; return;
+    case 20: case 30: arc(motion == 20, to, col); prev_g5 = false; return;
+    case 50: case 51: bezier(motion == 50, to, col); return;
+    case 52: start_g52(col); return;
+    case 62: start_g62(col, motion_word); return;
+    case 24: case 34: circle_block(motion, col); return;
+    case motion_cip: cip(to, col); return;
+    case motion_conic: conic(to, col); return;
+    case 730: case 810: case 820: case 830: cycle(motion, col); return;
+    default: break;
   }
   fail(col, "internal", fmt::format("motion mode {} not handled", g_name(motion)));
 }

@@ -7,22 +7,23 @@
 // how a dialect spells things. The handlers are spread by kind: non-modal codes
 // (nonmodal_codes.cpp: G4, G10, G28/G30, G92), arcs, CIP, G02.4 and CONIC (arc_blocks.cpp),
 // splines (spline_blocks.cpp), drilling cycles (canned_cycles.cpp).
-#include <array>
-#include <kontur/error.hpp>
-#include <kontur/gcode/block.hpp>
-#include <kontur/gcode/expression.hpp>
-#include <kontur/tolerances.hpp>
-#include <numbers>
-#include <set>
-#include <string>
-#include <vector>
-
 #include "block_words.hpp"
 #include "coordinate_frames.hpp"
 #include "diagnostics.hpp"
 #include "dialect_front_end.hpp"
 #include "message_format.hpp"
 #include "modal_groups.hpp"
+
+#include <kontur/error.hpp>
+#include <kontur/gcode/block.hpp>
+#include <kontur/gcode/expression.hpp>
+#include <kontur/tolerances.hpp>
+
+#include <array>
+#include <numbers>
+#include <set>
+#include <string>
+#include <vector>
 
 namespace kontur::gcode::detail {
 
@@ -34,19 +35,16 @@ struct PlaneAxes {
 };
 inline PlaneAxes plane_axes(Plane p) {
   switch (p) {
-    case Plane::xy:
-      return {0, 1, 2};
-    case Plane::zx:
-      return {2, 0, 1};
-    case Plane::yz:
-      return {1, 2, 0};
+    case Plane::xy: return {0, 1, 2};
+    case Plane::zx: return {2, 0, 1};
+    case Plane::yz: return {1, 2, 0};
   }
   return {0, 1, 2};
 }
 inline Vec3 unit(int axis) { return Vec3::Unit(axis); }
 
 class Executor final : public ControlFlowBarrier {
- public:
+public:
   /// Reports through `diagnostics`; G28.1 / G30.1 store and G28 / G30 read the home positions in
   /// `parameters` #5161-#5163 and #5181-#5183.
   Executor(Diagnostics& diagnostics, ParameterTable& parameters) : diag(diagnostics), params(parameters) {}
@@ -74,7 +72,7 @@ class Executor final : public ControlFlowBarrier {
   /// The current position in machine coordinates [mm].
   [[nodiscard]] Vec3 machine_position() const { return to_machine(pos); }
 
- private:
+private:
   // ================================================================ state
   Diagnostics& diag;
   ParameterTable& params;
@@ -88,7 +86,7 @@ class Executor final : public ControlFlowBarrier {
   bool ended_ = false;
   bool program_end_seen_ = false;
   bool q_warned = false;
-  std::set<int> warned_m_codes;  // unknown M codes warned about (once each)
+  std::set<int> warned_m_codes;  // M codes ignored so far (each warned once)
 
   // splines
   enum class Spline { none, g62, g52 } spline = Spline::none;
@@ -191,8 +189,7 @@ class Executor final : public ControlFlowBarrier {
       return Feed{FeedMode::inverse_time, w->get('F')};
     }
     if (!(feed_mm_per_min > 0.0))
-      fail(block_column(), "feed-missing",
-           fmt::format("{}: feed rate is zero (no F given before the first feed move)", what));
+      fail(block_column(), "feed-missing", fmt::format("{}: feed rate is zero (no F given before the first feed move)", what));
     return Feed{FeedMode::units_per_minute, feed_mm_per_min};
   }
 
@@ -220,6 +217,8 @@ class Executor final : public ControlFlowBarrier {
   void set_spindle(const BlockCodes& codes);
   void set_coolant(const BlockCodes& codes);
   void warn_io_codes(const BlockCodes& codes);
+  // M codes the tables do not know (machine-specific, user M100-M199): a warning once per code.
+  void warn_ignored_m_codes(const BlockCodes& codes);
   void set_plane(const BlockCodes& codes);
   void set_tool_length(const BlockCodes& codes);
   void set_work_system(const BlockCodes& codes);

@@ -10,9 +10,8 @@ LineOutcome LinuxcncFrontEnd::read_line(std::string_view raw, Words& words) {
   normalize_line(raw, diag.context(), nl);
   // A Fanuc / Haas program number ("O1234 (NAME)", ":0097", "%O1200"): the program's header, never
   // a LinuxCNC O-word (those have a keyword).
-  const bool program_number =
-      nl.text.size() >= 2 && nl.text[0] == 'O' &&
-      std::all_of(nl.text.begin() + 1, nl.text.end(), [](char c) { return c >= '0' && c <= '9'; });
+  const bool program_number = nl.text.size() >= 2 && nl.text[0] == 'O' &&
+                              std::all_of(nl.text.begin() + 1, nl.text.end(), [](char c) { return c >= '0' && c <= '9'; });
   if (nl.percent && !nl.text.empty() && !program_number)
     fail_column(diag.context(), nl.percent_column, "percent",
                 "'%' must stand alone on its line (tape start/end), or be followed by a program number");
@@ -37,10 +36,8 @@ LineOutcome LinuxcncFrontEnd::read_line(std::string_view raw, Words& words) {
   parse_words(nl, diag.context(), params, words, assignments, assignment_count);
   for (std::size_t i = 0; i < assignment_count; ++i) {
     const auto& a = assignments[i];
-    if (a.index > 0)
-      params.set_numbered(a.index, a.value);
-    else
-      params.set_named(a.name, a.value);
+    if (a.index > 0) params.set_numbered(a.index, a.value);
+    else params.set_named(a.name, a.value);
   }
   return words.empty() ? LineOutcome::nothing : LineOutcome::words;
 }
@@ -48,16 +45,13 @@ LineOutcome LinuxcncFrontEnd::read_line(std::string_view raw, Words& words) {
 void LinuxcncFrontEnd::at_end_of_input() {
   if (frames.empty()) return;
   const auto& f = frames.back();
-  static constexpr const char* names[] = {"sub",      "endsub", "call",   "return",    "while",
-                                          "endwhile", "do",     "repeat", "endrepeat", "if"};
+  static constexpr const char* names[] = {"sub", "endsub", "call", "return", "while", "endwhile", "do",
+                                          "repeat", "endrepeat", "if"};
   const auto k = static_cast<std::size_t>(f.kind);
   diag.fail_at_line(f.line, 1, "o-word",
                     fmt::format("{} {}: the program ends inside it ({} missing)", f.label, k < 10 ? names[k] : "?",
-                                f.kind == OKind::if_      ? "endif"
-                                : f.kind == OKind::call   ? "endsub"
-                                : f.kind == OKind::while_ ? "endwhile"
-                                : f.kind == OKind::do_    ? "while"
-                                                          : "endrepeat"));
+                                f.kind == OKind::if_ ? "endif" : f.kind == OKind::call ? "endsub" :
+                                f.kind == OKind::while_ ? "endwhile" : f.kind == OKind::do_ ? "while" : "endrepeat"));
 }
 
 }  // namespace kontur::gcode::detail

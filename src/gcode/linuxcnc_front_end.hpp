@@ -5,6 +5,9 @@
 // while / endwhile, do / while, repeat / endrepeat, break, continue, if / elseif / else / endif. The
 // reader streams: a loop or a call seeks back to a line start it has seen; only the open frames
 // and the subroutines' start offsets are kept.
+#include "dialect_front_end.hpp"
+#include "linuxcnc_lexer.hpp"
+
 #include <array>
 #include <cstddef>
 #include <initializer_list>
@@ -12,18 +15,12 @@
 #include <string>
 #include <vector>
 
-#include "dialect_front_end.hpp"
-#include "linuxcnc_lexer.hpp"
-
 namespace kontur::gcode::detail {
 
 class LinuxcncFrontEnd final : public DialectFrontEnd {
- public:
+public:
   explicit LinuxcncFrontEnd(const DialectServices& services)
-      : input(services.input),
-        params(services.parameters),
-        diag(services.diagnostics),
-        opt(services.options),
+      : input(services.input), params(services.parameters), diag(services.diagnostics), opt(services.options),
         executor(services.executor) {}
 
   [[nodiscard]] Dialect dialect() const noexcept override { return Dialect::linuxcnc; }
@@ -31,7 +28,7 @@ class LinuxcncFrontEnd final : public DialectFrontEnd {
   void at_end_of_input() override;
   [[nodiscard]] bool program_marks_its_end() const noexcept override { return tape; }
 
- private:
+private:
   ProgramInput& input;
   ParameterTable& params;
   Diagnostics& diag;
@@ -41,39 +38,24 @@ class LinuxcncFrontEnd final : public DialectFrontEnd {
   NormalizedLine nl;
   std::vector<Assignment> assignments;
   std::size_t assignment_count = 0;
-  bool tape = false;                   // the program started with '%'
-  bool seen_block = false;             // a line with content was read
+  bool tape = false;        // the program started with '%'
+  bool seen_block = false;  // a line with content was read
   bool program_number_warned = false;  // a Fanuc / Haas program number was noted
 
   // ================================================================ O-words (linuxcnc_o_words.cpp)
-  enum class OKind {
-    sub,
-    endsub,
-    call,
-    ret,
-    while_,
-    endwhile,
-    do_,
-    repeat,
-    endrepeat,
-    if_,
-    elseif,
-    else_,
-    endif,
-    break_,
-    continue_
-  };
+  enum class OKind { sub, endsub, call, ret, while_, endwhile, do_, repeat, endrepeat, if_, elseif, else_, endif,
+                     break_, continue_ };
   struct OWord {
     std::string label;
     OKind kind = OKind::sub;
     std::size_t rest = 0;  // position in nl.text after the keyword
   };
   struct Frame {
-    OKind kind;  // while_, do_, repeat, if_, call
+    OKind kind;            // while_, do_, repeat, if_, call
     std::string label;
-    std::size_t offset;  // while: the while line; do/repeat: the line after; call: the return line
+    std::size_t offset;    // while: the while line; do/repeat: the line after; call: the return line
     long line;
-    long count = 0;                  // repeat: iterations left; loops: iterations done
+    long count = 0;        // repeat: iterations left; loops: iterations done
     std::array<double, 30> saved{};  // call: #1..#30 of the caller
     int call_column = 1;
   };

@@ -2,10 +2,11 @@
 // and assignments. Its values come from linuxcnc_expression.cpp.
 #include "linuxcnc_lexer.hpp"
 
+#include <kontur/error.hpp>
+
 #include <fmt/format.h>
 
 #include <cmath>
-#include <kontur/error.hpp>
 
 namespace kontur::gcode::detail {
 
@@ -39,10 +40,8 @@ void normalize_line(std::string_view raw, const LineContext& ctx, NormalizedLine
     if (uc == 0 || (uc < 32 && c != '\t' && c != '\r' && c != '\f' && c != '\v') || uc == 127)
       fail_column(ctx, col, "not-text", fmt::format("byte 0x{:02x}: not a text file (control character)", uc));
     if (in_comment) {
-      if (c == ')')
-        in_comment = false;
-      else if (c == '(')
-        fail_column(ctx, col, "comment", "'(' inside a comment: comments do not nest");
+      if (c == ')') in_comment = false;
+      else if (c == '(') fail_column(ctx, col, "comment", "'(' inside a comment: comments do not nest");
       continue;
     }
     if (c == '(') {
@@ -66,8 +65,7 @@ void normalize_line(std::string_view raw, const LineContext& ctx, NormalizedLine
     }
     if (in_name) {  // #<name>: any printable character, spaces removed, upper case
       if (c == '>') in_name = false;
-      if (uc >= 128)
-        fail_column(ctx, col, "character", fmt::format("byte 0x{:02x}: only ASCII is allowed in a parameter name", uc));
+      if (uc >= 128) fail_column(ctx, col, "character", fmt::format("byte 0x{:02x}: only ASCII is allowed in a parameter name", uc));
       out.text.push_back((c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c);
       out.column.push_back(col);
       continue;
@@ -81,9 +79,8 @@ void normalize_line(std::string_view raw, const LineContext& ctx, NormalizedLine
     if (c == '@' || c == '^')
       fail_column(ctx, col, "unsupported",
                   fmt::format("'{}': LinuxCNC polar coordinates (@ radius, ^ angle) are not supported by Kontur", c));
-    if (c == ':' && !seen_content) {
-      // Fanuc's ISO program number ":0097" is "O0097"
-      if (!seen_content) out.first_column = col;
+    if (c == ':' && !seen_content) {  // Fanuc's ISO program number ":0097" is "O0097"
+      out.first_column = col;
       seen_content = true;
       out.text.push_back('O');
       out.column.push_back(col);
@@ -124,8 +121,8 @@ void parse_words(const NormalizedLine& line, const LineContext& ctx, const Param
         a.name.clear();
       }
       if (pos >= t.size() || t[pos] != '=')
-        fail_at(line, start, ctx, "syntax",
-                fmt::format("'{}': '=' expected after a parameter at the start of a word", excerpt(line, start)));
+        fail_at(line, start, ctx, "syntax", fmt::format("'{}': '=' expected after a parameter at the start of a word",
+                                                        excerpt(line, start)));
       ++pos;
       a.value = parse_real_value(line, pos, ctx, parameters);
       ++assignment_count;
@@ -140,8 +137,7 @@ void parse_words(const NormalizedLine& line, const LineContext& ctx, const Param
     if (t.compare(pos, 5, "CONIC") == 0 || t.compare(pos, 3, "CIP") == 0) {
       const bool conic = t.compare(pos, 5, "CONIC") == 0;
       if (w.keyword != Keyword::none)
-        fail_at(line, start, ctx, "word-twice",
-                fmt::format("{}: a second CIP/CONIC in the block", conic ? "CONIC" : "CIP"));
+        fail_at(line, start, ctx, "word-twice", fmt::format("{}: a second CIP/CONIC in the block", conic ? "CONIC" : "CIP"));
       w.keyword = conic ? Keyword::conic : Keyword::cip;
       w.keyword_column = col;
       pos += conic ? 5 : 3;
@@ -152,9 +148,7 @@ void parse_words(const NormalizedLine& line, const LineContext& ctx, const Param
       fail_at(line, start, ctx, "o-word",
               fmt::format("'{}': an O-word must be the first word of its line", excerpt(line, start)));
     if (c == 'N') {
-      if (!first)
-        fail_at(line, start, ctx, "n-word",
-                fmt::format("'{}': N number not at the start of the block", excerpt(line, start)));
+      if (!first) fail_at(line, start, ctx, "n-word", fmt::format("'{}': N number not at the start of the block", excerpt(line, start)));
       ++pos;
       long n = 0;
       std::size_t digits = 0;
@@ -167,8 +161,7 @@ void parse_words(const NormalizedLine& line, const LineContext& ctx, const Param
         ++pos;
         while (pos < t.size() && is_digit(t[pos])) ++pos;
       }
-      if (digits == 0 || digits > 12)
-        fail_at(line, start, ctx, "bad-number", fmt::format("'{}': N needs 1 to 12 digits", excerpt(line, start)));
+      if (digits == 0 || digits > 12) fail_at(line, start, ctx, "bad-number", fmt::format("'{}': N needs 1 to 12 digits", excerpt(line, start)));
       w.n_number = n;
       w.first_column = 0;  // the block's column is that of its first word after N
       first = true;
@@ -179,8 +172,7 @@ void parse_words(const NormalizedLine& line, const LineContext& ctx, const Param
       const int point = t[pos + 1] - '1';
       const int axis = c - 'I';
       if (point < 0 || point > 2)
-        fail_at(line, start, ctx, "unknown-word",
-                fmt::format("{}{}=: only I1= .. K3= exist (CIP, CONIC)", c, t[pos + 1]));
+        fail_at(line, start, ctx, "unknown-word", fmt::format("{}{}=: only I1= .. K3= exist (CIP, CONIC)", c, t[pos + 1]));
       if (w.has_indexed(point, axis))
         fail_at(line, start, ctx, "word-twice", fmt::format("{}{}=: word given twice", c, point + 1));
       pos += 3;
@@ -202,14 +194,12 @@ void parse_words(const NormalizedLine& line, const LineContext& ctx, const Param
         fail_at(line, start, ctx, c == 'G' ? "unknown-g-code" : "unknown-m-code",
                 fmt::format("{}: unknown {} code {}{}", word, c, c, v));
       if (c == 'G') {
-        if (w.g_count == static_cast<int>(w.g.size()))
-          fail_at(line, start, ctx, "too-many-words", fmt::format("{}: more than 16 G codes in a block", word));
+        if (w.g_count == static_cast<int>(w.g.size())) fail_at(line, start, ctx, "too-many-words", fmt::format("{}: more than 16 G codes in a block", word));
         w.g[static_cast<std::size_t>(w.g_count)] = static_cast<int>(r);
         w.g_leading_zero[static_cast<std::size_t>(w.g_count)] = word.size() > 2 && word[1] == '0' && is_digit(word[2]);
         w.g_column[static_cast<std::size_t>(w.g_count++)] = col;
       } else {
-        if (w.m_count == static_cast<int>(w.m.size()))
-          fail_at(line, start, ctx, "too-many-words", fmt::format("{}: more than 8 M codes in a block", word));
+        if (w.m_count == static_cast<int>(w.m.size())) fail_at(line, start, ctx, "too-many-words", fmt::format("{}: more than 8 M codes in a block", word));
         w.m[static_cast<std::size_t>(w.m_count)] = static_cast<int>(r);
         w.m_column[static_cast<std::size_t>(w.m_count++)] = col;
       }

@@ -4,22 +4,23 @@
 // delete and '%' tape marks noted) with a map back to the raw columns; then words, N numbers,
 // parameter assignments (#1 = .., #<name> = ..) and expressions ([..], functions, #parameters) are
 // read from it. Errors throw InputError with the control-alarm message "file:line:column: WORD: rule".
+#include "block_words.hpp"
+#include "diagnostics.hpp"
+
+#include <kontur/gcode/expression.hpp>
+
 #include <array>
 #include <cstdint>
-#include <kontur/gcode/expression.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include "block_words.hpp"
-#include "diagnostics.hpp"
 
 namespace kontur::gcode::detail {
 
 /// A line without comments and spaces, upper case, with the raw 1-based column of every character.
 struct NormalizedLine {
   std::string text;
-  std::vector<int> column;    // column[i] of text[i]; one extra entry for the end of the line
+  std::vector<int> column;  // column[i] of text[i]; one extra entry for the end of the line
   bool block_delete = false;  // the line starts with '/'
   bool percent = false;       // the line is a '%' tape mark (text: a program number after it, if any)
   int percent_column = 0;     // column of what follows the '%' on its line (0: nothing)
@@ -31,8 +32,8 @@ void normalize_line(std::string_view raw, const LineContext& ctx, NormalizedLine
 
 /// A parameter assignment of the line, applied after the whole line is read (LinuxCNC's rule).
 struct Assignment {
-  int index = 0;     // numbered parameter, or 0 for a named one
-  std::string name;  // named parameter
+  int index = 0;      // numbered parameter, or 0 for a named one
+  std::string name;   // named parameter
   double value = 0.0;
 };
 

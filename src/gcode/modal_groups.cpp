@@ -1,11 +1,11 @@
 // The tables of G and M codes by modal group, and the classification of a block's codes.
 #include "modal_groups.hpp"
 
+#include "message_format.hpp"
+
 #include <algorithm>
 #include <array>
 #include <iterator>
-
-#include "message_format.hpp"
 
 namespace kontur::gcode::detail {
 namespace {
@@ -24,103 +24,42 @@ constexpr const char* uvw_planes = "the UVW planes G17.1/G18.1/G19.1";
 
 // Sorted by code.
 constexpr GCodeEntry g_codes[] = {
-    {0, g_motion},
-    {10, g_motion},
-    {20, g_motion},
-    {24, g_motion},
-    {30, g_motion},
-    {34, g_motion},
-    {40, g_nonmodal},
-    {50, g_motion},
-    {51, g_motion},
-    {52, g_motion},
-    {53, g_spline_end},
-    {62, g_motion},
+    {0, g_motion},        {10, g_motion},      {20, g_motion},       {24, g_motion},       {30, g_motion},
+    {34, g_motion},       {40, g_nonmodal},    {50, g_motion},       {51, g_motion},       {52, g_motion},
+    {53, g_spline_end},   {62, g_motion},
     {70, -2, "lathe diameter mode G7 (X would be a diameter)"},
-    {80, g_lathe},
-    {100, g_nonmodal},
-    {170, g_plane},
-    {171, -2, uvw_planes},
-    {180, g_plane},
-    {181, -2, uvw_planes},
-    {190, g_plane},
-    {191, -2, uvw_planes},
-    {200, g_units},
-    {210, g_units},
-    {280, g_nonmodal},
-    {281, g_nonmodal},
-    {300, g_nonmodal},
-    {301, g_nonmodal},
-    {330, -2, spindle_sync},
-    {331, -2, spindle_sync},
-    {382, -2, probing},
-    {383, -2, probing},
-    {384, -2, probing},
-    {385, -2, probing},
-    {400, g_cutter},
-    {410, -2, cutter_comp},
-    {411, -2, cutter_comp},
-    {420, -2, cutter_comp},
-    {421, -2, cutter_comp},
-    {430, g_tool_length},
-    {431, g_tool_length},
-    {432, g_tool_length},
-    {490, g_tool_length},
-    {530, g_nonmodal},
-    {540, g_coordinate},
-    {550, g_coordinate},
-    {560, g_coordinate},
-    {570, g_coordinate},
-    {580, g_coordinate},
-    {590, g_coordinate},
-    {591, g_coordinate},
-    {592, g_coordinate},
-    {593, g_coordinate},
-    {610, g_path},
-    {611, g_path},
-    {640, g_path},
-    {730, g_motion},
+    {80, g_lathe},        {100, g_nonmodal},   {170, g_plane},
+    {171, -2, uvw_planes}, {180, g_plane},     {181, -2, uvw_planes}, {190, g_plane},      {191, -2, uvw_planes},
+    {200, g_units},       {210, g_units},      {280, g_nonmodal},    {281, g_nonmodal},    {300, g_nonmodal},
+    {301, g_nonmodal},    {330, -2, spindle_sync}, {331, -2, spindle_sync},
+    {382, -2, probing},   {383, -2, probing},  {384, -2, probing},   {385, -2, probing},
+    {400, g_cutter},      {410, -2, cutter_comp}, {411, -2, cutter_comp}, {420, -2, cutter_comp},
+    {421, -2, cutter_comp}, {430, g_tool_length}, {431, g_tool_length}, {432, g_tool_length}, {490, g_tool_length},
+    {530, g_nonmodal},    {540, g_coordinate}, {550, g_coordinate},  {560, g_coordinate},  {570, g_coordinate},
+    {580, g_coordinate},  {590, g_coordinate}, {591, g_coordinate},  {592, g_coordinate},  {593, g_coordinate},
+    {610, g_path},        {611, g_path},       {640, g_path},        {730, g_motion},
     {740, -2, "tapping cycles G74/G84 (spindle-synchronised motion)"},
     {760, -2, "the threading cycle G76 (spindle-synchronised motion)"},
-    {800, g_motion},
-    {810, g_motion},
-    {820, g_motion},
-    {830, g_motion},
+    {800, g_motion},      {810, g_motion},     {820, g_motion},      {830, g_motion},
     {840, -2, "tapping cycles G74/G84 (spindle-synchronised motion)"},
-    {850, -2, g85_g89},
-    {860, -2, g85_g89},
-    {870, -2, g85_g89},
-    {880, -2, g85_g89},
-    {890, -2, g85_g89},
-    {900, g_distance},
-    {901, g_arc_distance},
-    {910, g_distance},
-    {911, g_arc_distance},
-    {920, g_nonmodal},
-    {921, g_nonmodal},
-    {922, g_nonmodal},
-    {923, g_nonmodal},
-    {930, g_feed_mode},
-    {940, g_feed_mode},
+    {850, -2, g85_g89},   {860, -2, g85_g89},  {870, -2, g85_g89},   {880, -2, g85_g89},   {890, -2, g85_g89},
+    {900, g_distance},    {901, g_arc_distance}, {910, g_distance},  {911, g_arc_distance}, {920, g_nonmodal},
+    {921, g_nonmodal},    {922, g_nonmodal},   {923, g_nonmodal},    {930, g_feed_mode},   {940, g_feed_mode},
     {950, -2, "feed per revolution G95 (the feed would depend on the spindle)"},
-    {960, g_spindle_mode},
-    {970, g_spindle_mode},
-    {980, g_retract},
-    {990, g_retract},
+    {960, g_spindle_mode}, {970, g_spindle_mode}, {980, g_retract},     {990, g_retract},
 };
 
 struct MCodeEntry {
   int m;
   int group;
 };
-// Sorted by code; M100-M199 are handled apart (user M codes).
+// Sorted by code; M100-M199 are handled apart (user M codes). Codes not here are ignored with a warning.
 constexpr MCodeEntry m_codes[] = {
-    {0, m_stop},      {1, m_stop},      {2, m_stop},      {3, m_spindle},   {4, m_spindle},   {5, m_spindle},
-    {6, m_tool},      {7, m_coolant},   {8, m_coolant},   {9, m_coolant},   {19, m_io},       {30, m_stop},
+    {0, m_stop},  {1, m_stop},  {2, m_stop},  {3, m_spindle},  {4, m_spindle},  {5, m_spindle},  {6, m_tool},
+    {7, m_coolant}, {8, m_coolant}, {9, m_coolant}, {19, m_io}, {30, m_stop},
     {48, m_override}, {49, m_override}, {50, m_override}, {51, m_override}, {52, m_override}, {53, m_override},
-    {60, m_stop},     {61, m_io},       {62, m_io},       {63, m_io},       {64, m_io},       {65, m_io},
-    {66, m_io},       {67, m_io},       {68, m_io},       {70, m_io},       {71, m_io},       {72, m_io},
-    {73, m_io},
+    {60, m_stop}, {61, m_io}, {62, m_io}, {63, m_io}, {64, m_io}, {65, m_io}, {66, m_io}, {67, m_io}, {68, m_io},
+    {70, m_io}, {71, m_io}, {72, m_io}, {73, m_io},
 };
 
 constexpr bool sorted_g() {
@@ -141,8 +80,7 @@ constexpr int g_index_size = 1000;
 constexpr std::array<short, g_index_size> make_g_index() {
   std::array<short, g_index_size> index{};
   for (auto& i : index) i = -1;
-  for (std::size_t i = 0; i < std::size(g_codes); ++i)
-    index[static_cast<std::size_t>(g_codes[i].g10)] = static_cast<short>(i);
+  for (std::size_t i = 0; i < std::size(g_codes); ++i) index[static_cast<std::size_t>(g_codes[i].g10)] = static_cast<short>(i);
   return index;
 }
 constexpr std::array<short, g_index_size> g_index = make_g_index();
@@ -176,8 +114,7 @@ BlockCodes classify_codes(const Words& w, const Diagnostics& diag) {
     const std::string gn = g_name(g, w.g_leading_zero[static_cast<std::size_t>(i)] != 0);
     const CodeInfo info = g_code_info(g);
     const int grp = info.group;
-    if (grp == -2)
-      diag.fail(col, "unsupported", fmt::format("{}: {} is not supported by Kontur", gn, info.unsupported));
+    if (grp == -2) diag.fail(col, "unsupported", fmt::format("{}: {} is not supported by Kontur", gn, info.unsupported));
     if (grp < 0) diag.fail(col, "unknown-g-code", fmt::format("{}: unknown G code", gn));
     auto& slot = codes.g[static_cast<std::size_t>(grp)];
     // CAM safety lines write "G80 G00": G80 only cancels the cycle, the other code is the motion
@@ -189,8 +126,8 @@ BlockCodes classify_codes(const Words& w, const Diagnostics& diag) {
       continue;
     }
     if (slot >= 0)
-      diag.fail(col, "modal-group",
-                fmt::format("{}: {} and {} in one block: both belong to modal group {}", gn, g_name(slot), gn, grp));
+      diag.fail(col, "modal-group", fmt::format("{}: {} and {} in one block: both belong to modal group {}", gn,
+                                                g_name(slot), gn, grp));
     slot = g;
     codes.g_column[static_cast<std::size_t>(grp)] = col;
   }
@@ -199,7 +136,7 @@ BlockCodes classify_codes(const Words& w, const Diagnostics& diag) {
     const int col = w.m_column[static_cast<std::size_t>(i)];
     const CodeInfo info = m_code_info(m);
     const int grp = info.group;
-    if (grp < 0) {
+    if (grp < 0) {  // not in the tables: ignored (the executor warns)
       if (codes.ignored_m_count < static_cast<int>(codes.ignored_m.size())) {
         codes.ignored_m[static_cast<std::size_t>(codes.ignored_m_count)] = m;
         codes.ignored_m_column[static_cast<std::size_t>(codes.ignored_m_count++)] = col;

@@ -3,43 +3,22 @@
 // has one), as tables (modal_groups.cpp), and the classification of one block's codes into their
 // groups with the checks every control makes: unknown codes, codes Kontur deliberately does not
 // run, two codes of one group. Dialect-neutral: a dialect hands codes as numbers (times 10 for G).
-#include <array>
-
 #include "block_words.hpp"
 #include "diagnostics.hpp"
+
+#include <array>
 
 namespace kontur::gcode::detail {
 
 /// Modal groups of G codes.
 enum GGroup : int {
-  g_nonmodal = 0,
-  g_motion = 1,
-  g_plane = 2,
-  g_distance = 3,
-  g_arc_distance = 4,
-  g_feed_mode = 5,
-  g_units = 6,
-  g_cutter = 7,
-  g_tool_length = 8,
-  g_retract = 10,
-  g_coordinate = 12,
-  g_path = 13,
-  g_spindle_mode = 14,
-  g_lathe = 15,
-  g_spline_end = 16,
-  g_group_count = 17
+  g_nonmodal = 0, g_motion = 1, g_plane = 2, g_distance = 3, g_arc_distance = 4, g_feed_mode = 5, g_units = 6,
+  g_cutter = 7, g_tool_length = 8, g_retract = 10, g_coordinate = 12, g_path = 13, g_spindle_mode = 14,
+  g_lathe = 15, g_spline_end = 16, g_group_count = 17
 };
 /// Modal groups of M codes.
-enum MGroup : int {
-  m_stop = 4,
-  m_io = 5,
-  m_tool = 6,
-  m_spindle = 7,
-  m_coolant = 8,
-  m_override = 9,
-  m_other = 11,
-  m_group_count = 12
-};
+enum MGroup : int { m_stop = 4, m_io = 5, m_tool = 6, m_spindle = 7, m_coolant = 8, m_override = 9, m_other = 11,
+                    m_group_count = 12 };
 
 /// Motion modes that are not G codes (block keywords), and G80 (no motion).
 inline constexpr int motion_cip = 10000;
@@ -67,8 +46,8 @@ struct BlockCodes {
   std::array<int, g_group_count> g_column{};
   std::array<int, m_group_count> m{};
   bool coolant_mist_and_flood = false;  ///< M7 and M8 in one block
-  /// M codes this reader does not know (machine-specific: M25, M40, M101 ...) and their columns:
-  /// they do not move the axes; the executor warns once per code and ignores them.
+  /// M codes the tables do not know (machine-specific: M25, M40, M101 ...) and their columns: they
+  /// do not move the axes; the executor warns once per code and ignores them.
   std::array<int, 8> ignored_m{};
   std::array<int, 8> ignored_m_column{};
   int ignored_m_count = 0;
@@ -79,9 +58,8 @@ struct BlockCodes {
 };
 
 /// Sorts the block's G and M codes into their groups; throws at an unknown or unsupported G code
-/// or at two codes of one group (except "G80 G0" of CAM safety lines, and M7 with M8). Unknown M
-/// codes (and user M codes M100-M199) are listed in ignored_m (as a control that runs them, they
-/// do not move the axes).
+/// or at two codes of one group (except "G80 G0" of CAM safety lines, and M7 with M8). M codes not
+/// in the tables (machine-specific, user M100-M199) are listed in ignored_m.
 [[nodiscard]] BlockCodes classify_codes(const Words& w, const Diagnostics& diag);
 
 }  // namespace kontur::gcode::detail
