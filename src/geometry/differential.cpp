@@ -47,6 +47,16 @@ double chord_error(const Curve& curve, double u0, double u1, int samples) noexce
   return worst;
 }
 
+double polyline_distance(const std::vector<Vec3>& v, const Vec3& p, long first, long last) noexcept {
+  const long lines = static_cast<long>(v.size()) - 1;
+  first = std::max(first, 0L);
+  last = std::min(last, lines - 1);
+  double d = std::numeric_limits<double>::infinity();
+  for (long k = first; k <= last; ++k)
+    d = std::min(d, segment_distance(p, v[static_cast<std::size_t>(k)], v[static_cast<std::size_t>(k + 1)]));
+  return d;
+}
+
 double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) noexcept {
   const Vec3 ab = b - a;
   const double len2 = ab.squaredNorm();

@@ -44,16 +44,6 @@ struct Term {
 
 }  // namespace
 
-double polyline_distance(const std::vector<Vec3>& v, const Vec3& p, long first, long last) noexcept {
-  const long lines = static_cast<long>(v.size()) - 1;
-  first = std::max(first, 0L);
-  last = std::min(last, lines - 1);
-  double d = std::numeric_limits<double>::infinity();
-  for (long k = first; k <= last; ++k)
-    d = std::min(d, segment_distance(p, v[static_cast<std::size_t>(k)], v[static_cast<std::size_t>(k + 1)]));
-  return d;
-}
-
 std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& v, const Vec3& start_tangent, const Vec3& end_tangent,
                                         double tolerance_mm) {
   if (v.size() < 5 || !(tolerance_mm > 0.0)) return std::nullopt;

@@ -62,6 +62,19 @@ double project(const Curve& c, const std::vector<double>& bp, const Vec3& p, dou
   return (c.point(u_global) - p).squaredNorm() < d_local ? u_global : u_local;
 }
 
+// One more deviation [mm] from a programmed shape with its tolerance [mm]: the largest deviation,
+// the largest deviation / tolerance and the tolerance it was measured against.
+void track_deviation(double deviation_mm, double tolerance_mm, double& max_mm, double& max_ratio,
+                     double& worst_tolerance_mm) noexcept {
+  const double ratio = tolerance_mm > 0.0 ? deviation_mm / tolerance_mm
+                                          : (deviation_mm > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+  max_mm = std::max(max_mm, deviation_mm);
+  if (ratio >= max_ratio) {
+    max_ratio = ratio;
+    worst_tolerance_mm = tolerance_mm;
+  }
+}
+
 }  // namespace
 
 // A bounding-box tree over the moves: leaves of a few moves, each box holding the move's samples
@@ -382,20 +395,11 @@ void Checker::add(const Sample& s) {
   if (const auto& pl = moves_[m].lines) {
     // A smoothed line: the distance from the programmed lines around it (the nearest of the
     // tolerances::check_smoothing_lines lines on each side; the true distance is no larger).
-    const std::vector<Vec3>& v = *pl->vertices;
-    const long lines = static_cast<long>(v.size()) - 1, own = static_cast<long>(pl->line);
-    double dl = std::numeric_limits<double>::infinity();
-    for (long i = std::max(0L, own - tolerances::check_smoothing_lines);
-         i <= std::min(lines - 1, own + tolerances::check_smoothing_lines); ++i) {
-      const auto iu = static_cast<std::size_t>(i);
-      dl = std::min(dl, segment_distance(p, v[iu], v[iu + 1]));
-    }
-    r_.max_smoothing_deviation_mm = std::max(r_.max_smoothing_deviation_mm, dl);
-    const double ratio = pl->tolerance_mm > 0.0 ? dl / pl->tolerance_mm : std::numeric_limits<double>::infinity();
-    if (ratio >= r_.max_smoothing_deviation_ratio) {
-      r_.max_smoothing_deviation_ratio = ratio;
-      r_.smoothing_tolerance_mm = pl->tolerance_mm;
-    }
+    const auto own = static_cast<long>(pl->line);
+    track_deviation(polyline_distance(*pl->vertices, p, own - tolerances::check_smoothing_lines,
+                                      own + tolerances::check_smoothing_lines),
+                    pl->tolerance_mm, r_.max_smoothing_deviation_mm, r_.max_smoothing_deviation_ratio,
+                    r_.smoothing_tolerance_mm);
   }
   double chord = 0.0;
   if (k > 0 && m == m_prev_ && u > u_prev_) {
@@ -459,14 +463,8 @@ Report Checker::finish() {
     if (pm.lines) ++r.smoothed_lines;
     if (!pm.corner) continue;
     ++r.blends;
-    const double dev = blend_deviation(*pm.curve, *pm.corner);
-    const double ratio = pm.corner->tolerance_mm > 0.0 ? dev / pm.corner->tolerance_mm
-                                                       : (dev > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
-    r.max_blend_deviation_mm = std::max(r.max_blend_deviation_mm, dev);
-    if (ratio >= r.max_blend_deviation_ratio) {
-      r.max_blend_deviation_ratio = ratio;
-      r.blend_tolerance_mm = pm.corner->tolerance_mm;
-    }
+    track_deviation(blend_deviation(*pm.curve, *pm.corner), pm.corner->tolerance_mm, r.max_blend_deviation_mm,
+                    r.max_blend_deviation_ratio, r.blend_tolerance_mm);
   }
   // The worst axis: the first in the machine's order with the largest ratio.
   for (const Axis& ax : axes_) {

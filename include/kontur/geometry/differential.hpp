@@ -2,6 +2,7 @@
 // Differential geometry of a curve at a point: unit tangent, curvature, and the chord
 // (bow-height) error of a step, used by the feed planner and the seed 004 interpolator.
 #include <kontur/geometry/curve.hpp>
+#include <vector>
 
 namespace kontur {
 
@@ -21,5 +22,10 @@ namespace kontur {
 [[nodiscard]] double chord_error(const Curve& curve, double u0, double u1, int samples = 16) noexcept;
 /// Distance [mm] from the point p to the segment [a, b] (to a when a = b).
 [[nodiscard]] double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) noexcept;
+/// Distance [mm] from p to the lines first .. last (indices of lines, clamped to the polyline) of
+/// the polyline through `vertices`: line i runs from vertices[i] to vertices[i + 1]. Infinite if
+/// no line is in the range.
+[[nodiscard]] double polyline_distance(const std::vector<Vec3>& vertices, const Vec3& p, long first,
+                                       long last) noexcept;
 
 }  // namespace kontur

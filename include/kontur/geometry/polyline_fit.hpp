@@ -35,8 +35,4 @@ struct PolylineFit {
 [[nodiscard]] std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& vertices, const Vec3& start_tangent,
                                                       const Vec3& end_tangent, double tolerance_mm);
 
-/// Distance [mm] from p to the polyline's lines first..last (indices of lines, clamped to the polyline).
-[[nodiscard]] double polyline_distance(const std::vector<Vec3>& vertices, const Vec3& p, long first,
-                                       long last) noexcept;
-
 }  // namespace kontur
