@@ -19,7 +19,7 @@ std::vector<MovePiece> split_move(const Curve& c, const ArcLengthTable& table, d
     if (k > 0) {
       const Junction j = junction(c.derivatives_left(bp[k], 2), c.derivatives(bp[k], 2), machine);
       const double new_lo = std::min(lo, cap), new_hi = std::max(hi, cap);
-      if (j.jerk_share == 0.0 && !(new_hi > tolerances::plan_piece_cap_ratio * new_lo)) {
+      if (j.smooth() && !(new_hi > tolerances::plan_piece_cap_ratio * new_lo)) {
         pieces.back().u1 = bp[k + 1];
         pieces.back().geometry.merge(g);
         lo = new_lo;
@@ -93,8 +93,7 @@ void MotionPlanner::push(const program::Move& move) {
   if (!open_.pieces.empty()) {
     in = junction(*last_end_, c.derivatives(c.u_min(), 2), machine_);
     settle_last(in.jerk_share);
-    if (!(in.jerk_share == 0.0 && in.velocity == std::numeric_limits<double>::infinity()))
-      close_chain(in.velocity);  // a corner or a curvature jump: the speed there is limited
+    if (!in.smooth()) close_chain(in.velocity);  // a corner or a curvature jump: the speed there is limited
   }
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const MovePiece& p = pieces[i];
@@ -128,8 +127,7 @@ void MotionPlanner::push(const program::Move& move) {
     add_piece(std::move(piece));
     if (!last) {
       settle_last(p.end.jerk_share);
-      if (!(p.end.jerk_share == 0.0 && p.end.velocity == std::numeric_limits<double>::infinity()))
-        close_chain(p.end.velocity);
+      if (!p.end.smooth()) close_chain(p.end.velocity);
     }
   }
   last_end_ = c.derivatives_left(c.u_max(), 2);
@@ -170,9 +168,9 @@ void MotionPlanner::close_chain(double end_velocity) {
   if (open_.pieces.empty()) return;
   MoveConstraint mc;
   mc.limits = open_.pieces.front().limits;
+  mc.limits.max_velocity = open_.min_cap_mm_s;
   for (const Piece& p : open_.pieces) {
     mc.length_mm += p.length_mm;
-    mc.limits.max_velocity = std::min(mc.limits.max_velocity, p.limits.max_velocity);
     mc.limits.max_acceleration = std::min(mc.limits.max_acceleration, p.limits.max_acceleration);
     mc.limits.max_jerk = std::min(mc.limits.max_jerk, p.limits.max_jerk);
   }

@@ -25,7 +25,7 @@ bool Sampler::next(Setpoint& out) noexcept {
     s_ = m.s0_mm;
     t_move_ = 0.0;
     const bool holding = m.hold_before_s > 0.0;
-    emit(out, 0.0, m.curve->point(u_), holding ? 0.0 : m.profile.sample(m.window_t0_s).v,
+    emit(out, 0.0, m.curve->point(u_), holding ? 0.0 : m.start_velocity(),
          holding ? m.hold_before_line : m.source_line, holding ? m.hold_before_move : m.move);
     return true;
   }
@@ -60,7 +60,7 @@ bool Sampler::next(Setpoint& out) noexcept {
       line = m.hold_before_line;
       move = m.hold_before_move;
     } else {  // exactly at its start: the speed of its window's start (a chain's may be > 0)
-      st.v = m.profile.sample(m.window_t0_s).v;
+      st.v = m.start_velocity();
     }
   } else if (t_profile >= m.motion_s()) {
     st.s = m.s1_mm - m.s0_mm;  // dwelling after the segment

@@ -130,6 +130,8 @@ struct MoveGeometry {
 struct Junction {
   double velocity = 0.0;     ///< largest speed through it [mm/s] (infinity if smooth)
   double jerk_share = 0.0;   ///< share of each axis's jerk it uses (0 if smooth)
+  /// Tangent and curvature continuous: no limit of its own (a chain goes on through it).
+  [[nodiscard]] bool smooth() const noexcept { return jerk_share == 0.0; }
 };
 
 /// The junction of two stretches, from the end of the first (`end_in`: point and derivatives up to

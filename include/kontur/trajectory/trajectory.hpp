@@ -34,6 +34,8 @@ struct Segment {
   double window_t0_s = 0.0;   ///< start of the piece's window in the profile's time [s]
   double window_t1_s = 0.0;   ///< end of the window [s]
   double window_s0_mm = 0.0;  ///< the profile's distance at the window's start [mm]
+  /// Speed at the start of its window [mm/s] (inside a chain it need not be 0).
+  [[nodiscard]] double start_velocity() const noexcept { return profile.sample(window_t0_s).v; }
   /// Duration of the motion: the window [s].
   [[nodiscard]] double motion_s() const noexcept { return window_t1_s - window_t0_s; }
   /// Duration: hold before, motion, hold after [s].
