@@ -2,6 +2,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <array>
+#include <utility>
 #include <cmath>
 #include <kontur/geometry/differential.hpp>
 #include <kontur/geometry/polyline_fit.hpp>
@@ -34,11 +35,12 @@ struct Span {
   std::array<PolyCoeffs, degree + 1> basis{};
 };
 
-// A term w |sum_i b_i P_{first+i} - target|^2 of the energy.
+// A term w |sum_i b_i P_{first+i} - target|^2 of the energy. Its target is kept as the residual of
+// the reference control points (target - sum_i b_i ctrl_{first+i}): the fit solves for corrections.
 struct Term {
   std::size_t first = 0;
   std::array<double, degree + 1> b{};
-  Vec3 target = Vec3::Zero();
+  Vec3 residual = Vec3::Zero();
   double weight = 0.0;
 };
 
@@ -132,13 +134,44 @@ std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& v, const Vec3& 
     }
   }
 
+  for (auto* terms : {&penalties, &data})
+    for (Term& t : *terms)
+      for (std::size_t i = 0; i <= degree; ++i) t.residual -= t.b[i] * ctrl[t.first + i];
+
+  // What the check of a fit needs and no fit changes: the basis values at each span's samples
+  // (close enough that the curve between them stays near their chords), and the lines around
+  // each span the samples are measured against (those within `reach` of arc, at least one more
+  // on each side: a subset of the lines, so the true distance is no larger).
+  const double reach = 4.0 * tolerance_mm;  // [mm of arc]
+  struct Sample {
+    std::size_t span;
+    std::array<double, degree + 1> b;
+  };
+  std::vector<Sample> sample_basis;
+  std::vector<std::size_t> sample_start(m + 1);
+  std::vector<std::pair<long, long>> window(m);  // lines first .. last around span j
+  for (std::size_t j = 0; j < m; ++j) {
+    sample_start[j] = sample_basis.size();
+    const Span& sp = spans[j];
+    const int k = std::clamp(static_cast<int>(std::ceil(sp.length / (0.25 * tolerance_mm))), 4, 32);
+    for (int q = 0; q <= k; ++q) {
+      Sample smp{j, {}};
+      for (std::size_t i = 0; i <= degree; ++i) smp.b[i] = derivative(sp.basis[i], 0, sp.length * q / k);
+      sample_basis.push_back(smp);
+    }
+    const auto line = static_cast<long>(sp.line);
+    long lo = line, hi = line;
+    while (lo > 0 && s[static_cast<std::size_t>(lo)] > sp.start - reach) --lo;
+    while (hi + 1 < static_cast<long>(n) && s[static_cast<std::size_t>(hi) + 1] < sp.start + sp.length + reach) ++hi;
+    window[j] = {std::min(lo, line - 1), std::max(hi, line + 1)};
+  }
+  sample_start[m] = sample_basis.size();
+
   std::vector<double> factor(m, 1.0);  // weight factor of each span's data points
   const double target = tolerances::smooth_tolerance_share * tolerance_mm;
-  const double reach = 4.0 * tolerance_mm;  // lines searched around a sample [mm of arc]
   std::vector<Vec3> points = ctrl;          // the fitted control points
   std::vector<double> deviation(m);
-  std::vector<Vec3> samples;
-  std::vector<std::size_t> sample_start(m + 1);
+  std::vector<Vec3> samples(sample_basis.size());
   std::vector<char> raise(m);
 
   // The normal equations of the free control points: a banded matrix (three off-diagonals) whose
@@ -152,8 +185,7 @@ std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& v, const Vec3& 
   std::vector<double> penalty_values;
   // Adds w |sum b_i P_i - target|^2 to the matrix (lower triangle) and `r`.
   auto add = [&](const Term& t, double weight, Eigen::MatrixX3d& r) {
-    Vec3 res = t.target;  // the residual of the reference control points
-    for (std::size_t i = 0; i <= degree; ++i) res -= t.b[i] * ctrl[t.first + i];
+    const Vec3& res = t.residual;
     for (std::size_t i = 0; i <= degree; ++i) {
       const std::size_t ci = t.first + i;
       if (ci < first_free || ci >= first_free + free) continue;
@@ -192,34 +224,18 @@ std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& v, const Vec3& 
         points[first_free + i] = ctrl[first_free + i] + x.row(static_cast<Eigen::Index>(i)).transpose();
     }
 
-    // Samples of every span, close enough that the curve between them stays near their chords.
-    samples.clear();
-    for (std::size_t j = 0; j < m; ++j) {
-      sample_start[j] = samples.size();
-      const Span& sp = spans[j];
-      const int k = std::clamp(static_cast<int>(std::ceil(sp.length / (0.25 * tolerance_mm))), 4, 32);
-      for (int q = 0; q <= k; ++q) {
-        const double x = sp.length * q / k;
-        Vec3 c = Vec3::Zero();
-        for (std::size_t i = 0; i <= degree; ++i) c += derivative(sp.basis[i], 0, x) * points[j + i];
-        samples.push_back(c);
-      }
+    // The curve at the samples; the distance of each from the lines around its span, and of each
+    // inner vertex from the chords of the samples around it (the ends are on the curve).
+    for (std::size_t q = 0; q < samples.size(); ++q) {
+      const Sample& smp = sample_basis[q];
+      Vec3 c = Vec3::Zero();
+      for (std::size_t i = 0; i <= degree; ++i) c += smp.b[i] * points[smp.span + i];
+      samples[q] = c;
     }
-    sample_start[m] = samples.size();
-    // Distance of each sample from the polyline's lines around it (a subset of the lines: the
-    // true distance is no larger), and of each inner vertex from the chords of the samples
-    // around it (the ends are on the curve).
     for (std::size_t j = 0; j < m; ++j) {
-      const std::size_t line = spans[j].line;
-      const double from = spans[j].start, to = from + spans[j].length;
-      long lo = static_cast<long>(line), hi = static_cast<long>(line);
-      while (lo > 0 && s[static_cast<std::size_t>(lo)] > from - reach) --lo;
-      while (hi + 1 < static_cast<long>(n) && s[static_cast<std::size_t>(hi) + 1] < to + reach) ++hi;
-      lo = std::min(lo, static_cast<long>(line) - 1);
-      hi = std::max(hi, static_cast<long>(line) + 1);
       double d = 0.0;
       for (std::size_t q = sample_start[j]; q < sample_start[j + 1]; ++q)
-        d = std::max(d, polyline_distance(v, samples[q], lo, hi));
+        d = std::max(d, polyline_distance(v, samples[q], window[j].first, window[j].second));
       deviation[j] = d;
     }
     for (std::size_t i = 1; i < n; ++i) {
