@@ -72,13 +72,10 @@ void LineSmoother::flush(std::vector<Move>& out) {
   const double tol = smoothing_tolerance(run_.front());
   const std::optional<PolylineFit> fit = fit_polyline(*vertices, t0, t1, tol);
   if (!fit) {
-    ++stats_.runs_kept;
     for (Move& m : run_) out.push_back(std::move(m));
     run_.clear();
     return;
   }
-  ++stats_.runs;
-  stats_.lines += static_cast<long>(n - 2);
   const std::shared_ptr<const Curve> curve = std::make_shared<SpanPolynomialCurve>(fit->curve);
   const std::shared_ptr<const std::vector<Vec3>> shared = vertices;
   const auto breakpoints = std::make_shared<const std::vector<double>>(curve->breakpoints());

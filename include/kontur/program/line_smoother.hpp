@@ -14,13 +14,6 @@
 
 namespace kontur::program {
 
-/// What the smoothing did, for the summary.
-struct SmoothingStats {
-  long runs = 0;       ///< runs replaced by a curve
-  long lines = 0;      ///< lines replaced by their piece of a curve
-  long runs_kept = 0;  ///< runs the fit could not keep within the tolerance (left as lines)
-};
-
 class LineSmoother {
  public:
   /// `enabled` false: every move is handed on as given (`kontur run --no-smooth`).
@@ -29,14 +22,11 @@ class LineSmoother {
   void push(const Move& move, std::vector<Move>& out);
   /// A dwell or the end of the program: the run held back is handed on.
   void flush(std::vector<Move>& out);
-  /// What was smoothed so far.
-  [[nodiscard]] const SmoothingStats& stats() const noexcept { return stats_; }
 
  private:
   [[nodiscard]] bool continues(const Move& move) const;
   bool enabled_;
   std::vector<Move> run_;
-  SmoothingStats stats_;
 };
 
 }  // namespace kontur::program

@@ -1,8 +1,8 @@
 #pragma once
 // The path a part program runs: each block becomes a move (move_of), runs of dense lines are
 // smoothed within the G64 tolerance (LineSmoother), corners between lines are blended within it
-// (CornerBlender), dwells stop the motion, and every move gets its id (its index in the path). One place, so that the pipeline, `kontur verify` and the tests
-// see the same path.
+// (CornerBlender), dwells stop the motion, and every move gets its id (its index in the path).
+// One place, so that the pipeline, `kontur verify` and the tests see the same path.
 #include <functional>
 #include <kontur/gcode/block.hpp>
 #include <kontur/machine.hpp>
@@ -37,8 +37,6 @@ class ProgramPath {
 
   /// Every move of the path, in order: moves()[id].id == id.
   [[nodiscard]] const std::vector<Move>& moves() const noexcept { return moves_; }
-  /// What the smoothing of dense lines did in the last read.
-  [[nodiscard]] const SmoothingStats& smoothing() const noexcept { return smoother_.stats(); }
 
  private:
   void take(std::vector<Move>& ready, const PathHandlers& handlers);

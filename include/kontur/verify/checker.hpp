@@ -73,11 +73,13 @@ struct Report {
   double max_blend_deviation_mm = 0.0;     ///< largest distance of a blend from its programmed corner's lines [mm]
   double blend_tolerance_mm = 0.0;         ///< the tolerance of the blend with the largest deviation / tolerance [mm]
   double max_blend_deviation_ratio = 0.0;  ///< largest deviation / tolerance of a blend
-  long smoothed_lines = 0;                 ///< moves that are smoothed lines (program/line_smoother.hpp)
-  double max_smoothing_deviation_mm =
-      0.0;  ///< largest distance of a setpoint on a smoothed line from the programmed lines [mm]
-  double smoothing_tolerance_mm = 0.0;  ///< the tolerance of that setpoint's line (largest deviation / tolerance) [mm]
-  double max_smoothing_deviation_ratio = 0.0;  ///< largest distance / tolerance of a setpoint on a smoothed line
+  long smoothed_lines = 0;  ///< moves that are smoothed lines (program/line_smoother.hpp)
+  /// Largest distance of a setpoint on a smoothed line from the programmed lines [mm].
+  double max_smoothing_deviation_mm = 0.0;
+  /// The tolerance of the smoothed line with the largest distance / tolerance [mm].
+  double smoothing_tolerance_mm = 0.0;
+  /// Largest distance / tolerance of a setpoint on a smoothed line.
+  double max_smoothing_deviation_ratio = 0.0;
   /// One per move, in the order of `moves` (empty when the check could not run: no setpoint,
   /// no move, or a setpoint not finite). Their maxima are the maxima above.
   std::vector<BlockStats> blocks;
