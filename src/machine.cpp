@@ -110,6 +110,13 @@ Machine read_machine_toml(const std::filesystem::path& file) {
     const std::string k(key.str());
     if (k == "name") {
       if (auto s = node.value<std::string>()) m.name = *s;
+    } else if (k == "dialect") {
+      const auto name = node.value<std::string>();
+      m.dialect = name ? gcode::parse_dialect(*name) : std::nullopt;
+      if (!m.dialect)
+        fail(fmt::format("{}:{}", src, node.source().begin.line), "dialect",
+             fmt::format("dialect {}: not a G-code dialect (expected one of {})", name.value_or("(not a string)"),
+                         gcode::dialect_names()));
     } else if (k == "max_feed_mm_min") {
       m.max_feed_mm_s = number(node, k) / 60.0;
     } else if (k == "rapid_feed_mm_min") {
@@ -152,8 +159,8 @@ Machine read_machine_toml(const std::filesystem::path& file) {
       }
     } else {
       fail(fmt::format("{}:{}", src, node.source().begin.line), "unknown-field",
-           fmt::format("unknown field \"{}\" (expected name, max_feed_mm_min, rapid_feed_mm_min, chord_tolerance_mm, "
-                       "path_tolerance_mm, servo_period_s, axes)",
+           fmt::format("unknown field \"{}\" (expected name, dialect, max_feed_mm_min, rapid_feed_mm_min, "
+                       "chord_tolerance_mm, path_tolerance_mm, servo_period_s, axes)",
                        k));
     }
   }
@@ -267,6 +274,13 @@ Machine read_linuxcnc_ini(const std::filesystem::path& file) {
   if (auto v = number("EMCMOT", "SERVO_PERIOD")) m.servo_period_s = *v * 1e-9;
   if (auto v = number("KONTUR", "CHORD_TOLERANCE")) m.chord_tolerance_mm = *v * unit;
   if (auto v = number("KONTUR", "PATH_TOLERANCE")) m.path_tolerance_mm = *v * unit;
+  if (const auto* d = get("KONTUR", "DIALECT")) {
+    m.dialect = gcode::parse_dialect(d->first);
+    if (!m.dialect)
+      fail(fmt::format("{}:{}", src, d->second), "dialect",
+           fmt::format("[KONTUR] DIALECT = {}: not a G-code dialect (expected one of {})", d->first,
+                       gcode::dialect_names()));
+  }
   validate(m);
   return m;
 }
@@ -282,6 +296,7 @@ std::string to_toml(const Machine& m) {
                                 "chord_tolerance_mm = {}\npath_tolerance_mm = {}\nservo_period_s = {}\n",
                                 m.source, m.name, m.max_feed_mm_s * 60.0, m.rapid_feed_mm_s * 60.0,
                                 m.chord_tolerance_mm, m.path_tolerance_mm, m.servo_period_s);
+  if (m.dialect) out += fmt::format("dialect = \"{}\"\n", gcode::to_string(*m.dialect));
   for (const auto& a : m.axes) {
     const char* u = a.rotary ? "deg" : "mm";
     out += fmt::format("\n[axes.{}]\nmax_velocity = {}          # [{}/s]\nmax_acceleration = {}      # [{}/s^2]\n"

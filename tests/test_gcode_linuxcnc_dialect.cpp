@@ -130,7 +130,7 @@ FrontEndRun run_front_end(const std::string& program) {
   input.open_memory(program);
   ParameterTable params;
   CountingBarrier barrier;
-  const auto fe = make_front_end(Dialect::linuxcnc, DialectServices{input, params, diag, options, barrier});
+  const auto fe = make_front_end(Dialect::linuxcnc, DialectServices{Dialect::linuxcnc, input, params, diag, options, barrier});
   FrontEndRun run;
   Words words;
   std::string_view raw;
@@ -146,15 +146,15 @@ FrontEndRun run_front_end(const std::string& program) {
   return run;
 }
 
-TEST(GcodeLinuxcncFrontEnd, RegistryHandsOutTheLinuxcncDialectByDefault) {
-  EXPECT_EQ(ReaderOptions{}.dialect, Dialect::linuxcnc);
+TEST(GcodeLinuxcncFrontEnd, RegistryHandsOutTheLinuxcncFrontEnd) {
+  EXPECT_FALSE(ReaderOptions{}.dialect.has_value());  // detected from the program by default
   EXPECT_STREQ(to_string(Dialect::linuxcnc), "linuxcnc");
   Diagnostics diag("x.ngc", 1);
   ProgramInput input(diag);
   ParameterTable params;
   CountingBarrier barrier;
   const ReaderOptions options;
-  const auto fe = make_front_end(Dialect::linuxcnc, DialectServices{input, params, diag, options, barrier});
+  const auto fe = make_front_end(Dialect::linuxcnc, DialectServices{Dialect::linuxcnc, input, params, diag, options, barrier});
   ASSERT_NE(fe, nullptr);
   EXPECT_EQ(fe->dialect(), Dialect::linuxcnc);
 }

@@ -1,6 +1,7 @@
 // `kontur check PROGRAM`: reads a G-code part program, validates every block and prints per
 // block its line, type, length and feed, then the totals; --json for tools.
 #include "commands.hpp"
+#include "program_options.hpp"
 
 #include <kontur/error.hpp>
 #include <kontur/gcode/reader.hpp>
@@ -18,7 +19,7 @@ struct CheckOptions {
   std::string file;
   bool json = false;
   bool quiet = false;
-  bool no_block_delete = false;
+  ProgramReadOptions read;
 };
 
 std::string num(double v) {
@@ -34,14 +35,15 @@ std::string feed_text(const gcode::Block& b) {
 }
 
 void run_check(const CheckOptions& o) {
-  gcode::ReaderOptions ro;
-  ro.block_delete = !o.no_block_delete;
+  // The dialect line goes to stderr, except in JSON (it is a field there).
+  const gcode::ReaderOptions ro = reader_options(o.read, o.file, nullptr, o.json);
   // Validate first: a program with an error prints nothing but the error (and exits 1).
   const gcode::ProgramSummary s = gcode::check_program(o.file, ro);
   if (o.json) {
     nlohmann::ordered_json j;
     j["file"] = o.file;
     j["valid"] = true;
+    j["dialect"] = {{"name", gcode::to_string(s.dialect.dialect)}, {"reason", s.dialect.reason}};
     auto& blocks = j["blocks"] = nlohmann::ordered_json::array();
     if (!o.quiet)
       gcode::check_program(o.file, ro, [&](const gcode::Block& b, std::optional<double> len) {
@@ -112,7 +114,7 @@ void register_check_command(CLI::App& app, int& exit_code) {
       ->required();
   cmd->add_flag("--json", opts->json, "print the result as JSON");
   cmd->add_flag("--quiet", opts->quiet, "print only the totals");
-  cmd->add_flag("--no-block-delete", opts->no_block_delete, "read blocks starting with '/' (skipped by default)");
+  add_program_read_options(cmd, opts->read);
   cmd->footer(
       "Kontur's conic block (no control has one; the name collides with no code of Fanuc, Mitsubishi,\n"
       "LinuxCNC or Sinumerik):\n"

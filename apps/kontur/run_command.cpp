@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "program_options.hpp"
 #include "report_output.hpp"
 #include "run_report.hpp"
 #include "summary_output.hpp"
@@ -39,6 +40,7 @@ struct RunOptions {
   bool quiet = false;
   bool no_blend = false;
   bool no_smooth = false;
+  ProgramReadOptions read;
 };
 
 // A progress bar on stderr for runs longer than a second, only when stderr is a terminal (and
@@ -113,6 +115,8 @@ bool run_program(const RunOptions& o) {
   PipelineOptions options;
   options.blend = !o.no_blend;
   options.smooth = !o.no_smooth;
+  // The summary says which dialect was taken and why.
+  options.reader = reader_options(o.read, o.program, &machine, true);
   options.time_optimal = o.time_optimal;
   Pipeline pipeline(std::move(machine), options);
   std::unique_ptr<RunReportBuilder> builder;
@@ -174,6 +178,7 @@ void register_run_command(CLI::App& app, int& exit_code) {
                 "do not blend corners between lines within the G64 tolerance (each corner is a junction)");
   cmd->add_flag("--no-smooth", o->no_smooth,
                 "do not smooth runs of dense lines within the G64 tolerance (each line runs as programmed)");
+  add_program_read_options(cmd, o->read);
   cmd->footer(
       "Example:\n  kontur run examples/programs/square_arc.ngc -o square_arc.csv --summary square_arc.json "
       "--report square_arc.html\n"

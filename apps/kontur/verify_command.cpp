@@ -14,6 +14,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "program_options.hpp"
 #include "run_report.hpp"
 #include "summary_output.hpp"
 
@@ -29,6 +30,7 @@ struct VerifyOptions {
   bool quiet = false;
   bool no_blend = false;
   bool no_smooth = false;
+  ProgramReadOptions read;
 };
 
 bool verify_setpoints(const VerifyOptions& o) {
@@ -40,6 +42,8 @@ bool verify_setpoints(const VerifyOptions& o) {
   PipelineOptions options;
   options.blend = !o.no_blend;
   options.smooth = !o.no_smooth;
+  // The summary says which dialect was taken and why.
+  options.reader = reader_options(o.read, o.program, &machine, true);
   Pipeline pipeline(std::move(machine), options);
   std::unique_ptr<RunReportBuilder> builder;
   if (!o.report.empty()) builder = std::make_unique<RunReportBuilder>(pipeline.machine(), pipeline.moves());
@@ -74,6 +78,7 @@ void register_verify_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--no-blend", o->no_blend, "the path without corner blends (setpoints of kontur run --no-blend)");
   cmd->add_flag("--no-smooth", o->no_smooth,
                 "the path with dense lines as programmed (setpoints of kontur run --no-smooth)");
+  add_program_read_options(cmd, o->read);
   cmd->footer(
       "Example:\n  kontur run examples/programs/square_arc.ngc -o square_arc.csv --quiet\n"
       "  kontur verify examples/programs/square_arc.ngc square_arc.csv --summary -\n"

@@ -1,4 +1,5 @@
 #pragma once
+#include <kontur/gcode/dialect.hpp>
 // The machine a program runs on: per-axis velocity, acceleration and jerk limits, path feed
 // limits, chord tolerance and servo period. Read from Kontur's TOML machine file or from a
 // LinuxCNC INI file; an embedded default serves when none is given. All values in [mm], [s].
@@ -30,6 +31,9 @@ struct Machine {
   double chord_tolerance_mm = 0.0;  ///< largest bow height of a servo cycle's chord [mm]
   double path_tolerance_mm = 0.0;   ///< G64 corner tolerance when the program gives none [mm]
   double servo_period_s = 0.0;      ///< servo (interpolation) period [s]
+  /// The G-code dialect of the machine's control (TOML `dialect`, INI `[KONTUR] DIALECT`); none:
+  /// each program's dialect is detected (gcode::detect_dialect). `--dialect` overrides it.
+  std::optional<gcode::Dialect> dialect;
 
   /// The limits of axis `name` (X, Y, Z, A, B, C), or nullptr.
   [[nodiscard]] const AxisLimits* axis(char name) const noexcept;

@@ -9,6 +9,7 @@
 // nothing retypes it.
 #include <functional>
 #include <kontur/axes.hpp>
+#include <kontur/gcode/reader.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/program/move.hpp>
 #include <kontur/program/program_path.hpp>
@@ -26,6 +27,8 @@ struct PipelineOptions {
   bool smooth = true;         ///< smooth runs of dense lines within the G64 tolerance (false: `--no-smooth`)
   bool check = true;          ///< check the setpoints independently as they stream (false: planning only)
   bool time_optimal = false;  ///< add the time-optimal reference (acceleration-limited) to the summary
+  /// How the program is read: block delete, dialect (none: the machine's, else detected).
+  gcode::ReaderOptions reader;
 };
 
 /// What a run hands out while it goes. Every handler may be empty.
@@ -70,6 +73,9 @@ class Pipeline {
   [[nodiscard]] const AxisLayout& layout() const noexcept { return layout_; }
 
  private:
+  // options.reader, with the machine's dialect when it names none.
+  [[nodiscard]] gcode::ReaderOptions reader_options() const;
+
   Machine machine_;
   PipelineOptions options_;
   AxisLayout layout_ = AxisLayout::xyz();

@@ -123,6 +123,9 @@ inline constexpr double gcode_max_value = 1e9;
 /// Default largest number of O-word loop iterations and subroutine calls of a whole program
 /// (ReaderOptions::max_loop_iterations): more is taken as an endless loop.
 inline constexpr long gcode_max_loop_iterations = 10000000;
+/// Lines at the beginning of a program looked at to tell its dialect (gcode::detect_dialect): marks
+/// such as a program number or a Sinumerik header come first.
+inline constexpr int gcode_dialect_detection_lines = 400;
 /// Largest number of pecks of one G73 / G83 hole (Q too small for the depth is an error).
 inline constexpr int gcode_max_pecks = 10000;
 

@@ -20,20 +20,27 @@ ProgramSummary check_program(const std::string& path, const ReaderOptions& optio
   s.lines = reader.lines_read();
   s.warning_count = reader.warning_count();
   s.warnings = reader.warnings();
+  s.dialect = reader.dialect();
   return s;
 }
 
-void for_each_block(const std::string& path, const std::function<void(const Block&)>& on_block,
-                    const ReaderOptions& options) {
+DialectChoice for_each_block(const std::string& path, const std::function<void(const Block&)>& on_block,
+                             const ReaderOptions& options) {
+  ReaderOptions again = options;
+  DialectChoice choice;
   {
     Reader validate(path, options);  // pass 1: the whole program, no block kept
     Block b;
     while (validate.next(b)) {
     }
+    again.dialect = validate.dialect().dialect;
+    again.dialect_reason = validate.dialect().reason;
+    choice = validate.dialect();
   }
-  Reader reader(path, options);  // pass 2: the same program, now known to be valid
+  Reader reader(path, again);  // pass 2: the same program, now known to be valid
   Block b;
   while (reader.next(b)) on_block(b);
+  return choice;
 }
 
 }  // namespace kontur::gcode

@@ -33,8 +33,19 @@ protected:
   ~ControlFlowBarrier() = default;
 };
 
+/// Where a dialect's control differs from LinuxCNC's in running words (the executor's part; how
+/// the words are spelled is the front end's).
+struct DialectRules {
+  /// G80 cancels only the canned cycle: the G0 / G1 / G2 / G3 in effect before it is the motion
+  /// mode again (Fanuc group 01 and group 09 are apart), instead of "no motion mode" (LinuxCNC).
+  bool g80_restores_motion = false;
+};
+/// The rules of `dialect` (dialect_registry.cpp).
+[[nodiscard]] DialectRules rules_of(Dialect dialect) noexcept;
+
 /// Everything a front end works with; owned by the Reader and outliving the front end.
 struct DialectServices {
+  Dialect dialect;                ///< the dialect being read (one front end may serve several)
   ProgramInput& input;            ///< the program text (read_line, seek)
   ParameterTable& parameters;     ///< the program's parameters
   Diagnostics& diagnostics;       ///< file, line, errors and warnings

@@ -1,26 +1,38 @@
-// The registry of dialects: Reader asks here for the front end of ReaderOptions::dialect.
+// The registry of dialects: Reader asks here for the front end of the program's dialect and for
+// the rules its executor follows.
 #include "dialect_front_end.hpp"
 #include "linuxcnc_front_end.hpp"
 
 #include <fmt/format.h>
 
-namespace kontur::gcode {
+namespace kontur::gcode::detail {
 
-const char* to_string(Dialect dialect) noexcept {
+DialectRules rules_of(Dialect dialect) noexcept {
+  DialectRules r;
   switch (dialect) {
-    case Dialect::linuxcnc: return "linuxcnc";
+    case Dialect::fanuc:
+    case Dialect::haas:
+    case Dialect::mitsubishi:
+    case Dialect::mach3: r.g80_restores_motion = true; break;
+    case Dialect::linuxcnc:
+    case Dialect::sinumerik:
+    case Dialect::grbl: break;
   }
-  return "?";
+  return r;
 }
-
-namespace detail {
 
 std::unique_ptr<DialectFrontEnd> make_front_end(Dialect dialect, const DialectServices& services) {
   switch (dialect) {
-    case Dialect::linuxcnc: return std::make_unique<LinuxcncFrontEnd>(services);
+    case Dialect::linuxcnc:
+    case Dialect::grbl:
+    case Dialect::fanuc:
+    case Dialect::haas:
+    case Dialect::mitsubishi:
+    case Dialect::mach3: return std::make_unique<LinuxcncFrontEnd>(services);
+    case Dialect::sinumerik: break;
   }
-  throw InputError("dialect", fmt::format("dialect {} is not implemented", static_cast<int>(dialect)));
+  throw InputError("dialect", fmt::format("{}: the {} dialect is not implemented yet", services.diagnostics.context().file,
+                                          to_string(dialect)));
 }
 
-}  // namespace detail
-}  // namespace kontur::gcode
+}  // namespace kontur::gcode::detail

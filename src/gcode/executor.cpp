@@ -252,6 +252,9 @@ void Executor::run_motion(const BlockCodes& codes, bool machine_coordinates) {
   const bool nonmodal_uses_axes = nonmodal == 100 || nonmodal == 280 || nonmodal == 300 || nonmodal == 920;
   int motion = modal.motion_g10;
   if (motion_word >= 0) motion = motion_word;
+  if (motion == 0 || motion == 10 || motion == 20 || motion == 30) group01_motion = motion;
+  // Fanuc's G80 cancels the cycle only: the G0 / G1 / G2 / G3 before it is the motion mode again.
+  if (motion_word == motion_none && rules_.g80_restores_motion && group01_motion >= 0) motion = group01_motion;
   if (w->keyword == Keyword::cip) motion = motion_cip;
   if (w->keyword == Keyword::conic) motion = motion_conic;
   const bool starts_motion = motion_word >= 0 || w->keyword != Keyword::none;

@@ -51,6 +51,8 @@ public:
   Executor(const Executor&) = delete;
   Executor& operator=(const Executor&) = delete;
 
+  /// The rules of the program's dialect (before the first block; LinuxCNC's by default).
+  void set_rules(const DialectRules& rules) noexcept { rules_ = rules; }
   /// Runs one block; its blocks are appended to blocks(). Throws InputError at the first error.
   /// `words` must stay valid until the next call (a spline or circle may refer to it).
   void execute(const Words& words);
@@ -80,6 +82,8 @@ private:
   static const Words no_words;
 
   ModalState modal;
+  DialectRules rules_;
+  int group01_motion = -1;  // the last G0 / G1 / G2 / G3 motion mode (times 10), -1 before one
   Vec3 pos = Vec3::Zero();  // program coordinates [mm]
   CoordinateFrames frames;
   double feed_mm_per_min = 0.0;

@@ -3,10 +3,34 @@
 #include "linuxcnc_front_end.hpp"
 
 #include <algorithm>
+#include <cctype>
 
 namespace kontur::gcode::detail {
 
+void LinuxcncFrontEnd::grbl_command(std::string_view line, int column) {
+  const auto upper = [](char c) { return static_cast<char>(std::toupper(static_cast<unsigned char>(c))); };
+  const char what = line.size() > 1 ? upper(line[1]) : ' ';
+  if (what == 'H')
+    fail(column, "grbl-homing",
+         fmt::format("{}: grbl's homing cycle moves to the machine's home switches, which a machine file does not "
+                     "give (dialect grbl); home the machine before the program",
+                     line));
+  if (what == 'J')
+    fail(column, "grbl-jog",
+         fmt::format("{}: a grbl jog is a manual motion, not part of a program (dialect grbl); write it as G1", line));
+  diag.warn(column, fmt::format("{}: a grbl setting or command, ignored: it does not move the axes", line));
+}
+
 LineOutcome LinuxcncFrontEnd::read_line(std::string_view raw, Words& words) {
+  if (dialect_ == Dialect::grbl) {
+    const auto first = raw.find_first_not_of(" \t");
+    if (first != std::string_view::npos && raw[first] == '$') {
+      auto line = raw.substr(first);
+      while (!line.empty() && (line.back() == ' ' || line.back() == '\t' || line.back() == '\r')) line.remove_suffix(1);
+      grbl_command(line, static_cast<int>(first) + 1);
+      return LineOutcome::nothing;
+    }
+  }
   normalize_line(raw, diag.context(), nl);
   // A Fanuc / Haas program number ("O1234 (NAME)", ":0097", "%O1200"): the program's header, never
   // a LinuxCNC O-word (those have a keyword).

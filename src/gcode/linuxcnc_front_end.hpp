@@ -20,15 +20,16 @@ namespace kontur::gcode::detail {
 class LinuxcncFrontEnd final : public DialectFrontEnd {
 public:
   explicit LinuxcncFrontEnd(const DialectServices& services)
-      : input(services.input), params(services.parameters), diag(services.diagnostics), opt(services.options),
+      : dialect_(services.dialect), input(services.input), params(services.parameters), diag(services.diagnostics), opt(services.options),
         executor(services.executor) {}
 
-  [[nodiscard]] Dialect dialect() const noexcept override { return Dialect::linuxcnc; }
+  [[nodiscard]] Dialect dialect() const noexcept override { return dialect_; }
   LineOutcome read_line(std::string_view raw, Words& words) override;
   void at_end_of_input() override;
   [[nodiscard]] bool program_marks_its_end() const noexcept override { return tape; }
 
 private:
+  Dialect dialect_;  // linuxcnc, or a dialect read the same way (grbl: with its `$` lines)
   ProgramInput& input;
   ParameterTable& params;
   Diagnostics& diag;
@@ -41,6 +42,9 @@ private:
   bool tape = false;        // the program started with '%'
   bool seen_block = false;  // a line with content was read
   bool program_number_warned = false;  // a Fanuc / Haas program number was noted
+
+  // grbl: a `$` line (a setting or a system command) at `column`; refused if it moves the axes.
+  void grbl_command(std::string_view line, int column);
 
   // ================================================================ O-words (linuxcnc_o_words.cpp)
   enum class OKind { sub, endsub, call, ret, while_, endwhile, do_, repeat, endrepeat, if_, elseif, else_, endif,

@@ -13,14 +13,28 @@ struct Reader::Impl {
   detail::ProgramInput input;
   ParameterTable params;
   detail::Executor executor;
+  DialectChoice dialect;
   std::unique_ptr<detail::DialectFrontEnd> front_end;
   detail::Words words;
   std::size_t head = 0;     // next block of executor.blocks() to hand out
   bool finished = false;    // the input ended, or an error was thrown
 
-  Impl(std::string_view name, ReaderOptions o)
-      : opt(o), diag(name, opt.max_warnings_kept), input(diag), executor(diag, params),
-        front_end(detail::make_front_end(opt.dialect, detail::DialectServices{input, params, diag, opt, executor})) {}
+  Impl(std::string_view name, ReaderOptions o) : opt(o), diag(name, opt.max_warnings_kept), input(diag), executor(diag, params) {}
+
+  // The dialect given in the options, else `detect()`.
+  template <class Detect>
+  DialectChoice choose(Detect detect) const {
+    if (!opt.dialect) return detect();
+    return DialectChoice{*opt.dialect, opt.dialect_reason.empty() ? std::string("given") : opt.dialect_reason};
+  }
+  // The input is open: the dialect and its front end.
+  void start(DialectChoice choice) {
+    dialect = std::move(choice);
+    opt.dialect = dialect.dialect;
+    executor.set_rules(detail::rules_of(dialect.dialect));
+    front_end = detail::make_front_end(dialect.dialect,
+                                       detail::DialectServices{dialect.dialect, input, params, diag, opt, executor});
+  }
 
   // Reads lines until the executor has made blocks or the program has ended.
   void read_more();
@@ -45,10 +59,13 @@ void Reader::Impl::read_more() {
 
 Reader::Reader(const std::string& path, ReaderOptions options) : impl_(std::make_unique<Impl>(path, options)) {
   impl_->input.open(path);
+  impl_->start(impl_->choose([&] { return detect_dialect_of_file(path); }));
 }
 Reader::Reader(std::string_view name, std::string text, ReaderOptions options)
     : impl_(std::make_unique<Impl>(name, options)) {
+  DialectChoice choice = impl_->choose([&] { return detect_dialect(name, text); });
   impl_->input.open_memory(std::move(text));
+  impl_->start(std::move(choice));
 }
 Reader::~Reader() = default;
 Reader::Reader(Reader&&) noexcept = default;
@@ -76,5 +93,6 @@ bool Reader::next(Block& out) {
 const std::vector<std::string>& Reader::warnings() const noexcept { return impl_->diag.warnings(); }
 std::size_t Reader::warning_count() const noexcept { return impl_->diag.warning_count(); }
 long Reader::lines_read() const noexcept { return impl_->diag.line(); }
+const DialectChoice& Reader::dialect() const noexcept { return impl_->dialect; }
 
 }  // namespace kontur::gcode

@@ -33,6 +33,15 @@ Pipeline::Pipeline(Machine machine, PipelineOptions options)
         return plan::curve_speed_cap(blend, feed_mm_s, machine_);
       }) {}
 
+gcode::ReaderOptions Pipeline::reader_options() const {
+  gcode::ReaderOptions o = options_.reader;
+  if (!o.dialect && machine_.dialect) {
+    o.dialect = machine_.dialect;
+    o.dialect_reason = "the machine file's dialect";
+  }
+  return o;
+}
+
 RunResult Pipeline::run(const std::string& program, const PipelineEvents& events) {
   trajectory::Trajectory trajectory;
   plan::MotionPlanner planner(machine_, trajectory);
@@ -56,13 +65,14 @@ RunResult Pipeline::run(const std::string& program, const PipelineEvents& events
     drain();
     if (events.progress) events.progress(b.location.line);
   };
-  path_.read(program, handlers);
+  path_.read(program, handlers, reader_options());
   planner.finish();
   drain();
   if (!checker) return result;
   result.check = checker->finish();
   result.passed = result.check.passed(machine_);
   report::SummaryExtras extras;
+  extras.dialect = path_.dialect();
   if (options_.time_optimal) extras.time_optimal_s = time_optimal_time(path_.moves(), machine_);
   result.summary_json =
       report::summary_json(program, machine_, result.check, path_.moves(), result.total_time_s, extras);
@@ -72,7 +82,7 @@ RunResult Pipeline::run(const std::string& program, const PipelineEvents& events
 RunResult Pipeline::verify(const std::string& program, const std::string& setpoints, const PipelineEvents& events) {
   // The path, as run() builds it: the same corner blends, each checked against the programmed
   // lines it replaces.
-  path_.read(program, {});
+  path_.read(program, {}, reader_options());
   const std::vector<program::Move>& moves = path_.moves();
   if (moves.empty())
     throw InputError("program-no-motion",
@@ -100,6 +110,7 @@ RunResult Pipeline::verify(const std::string& program, const std::string& setpoi
   result.check = checker.finish();
   result.passed = result.check.passed(machine_);
   report::SummaryExtras extras;
+  extras.dialect = path_.dialect();
   extras.setpoint_file = setpoints;
   result.summary_json = report::summary_json(program, machine_, result.check, moves, result.total_time_s, extras);
   return result;

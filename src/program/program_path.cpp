@@ -21,7 +21,7 @@ void ProgramPath::take(std::vector<Move>& ready, const PathHandlers& handlers) {
   ready.clear();
 }
 
-void ProgramPath::read(const std::string& program, const PathHandlers& handlers) {
+void ProgramPath::read(const std::string& program, const PathHandlers& handlers, const gcode::ReaderOptions& reader) {
   moves_.clear();
   smoother_ = LineSmoother(smooth_);
   blender_ = CornerBlender(blend_, &machine_, speed_);
@@ -31,7 +31,7 @@ void ProgramPath::read(const std::string& program, const PathHandlers& handlers)
     for (const Move& m : smoothed_) blender_.push(m, ready);
     smoothed_.clear();
   };
-  gcode::for_each_block(program, [&](const gcode::Block& b) {
+  dialect_ = gcode::for_each_block(program, [&](const gcode::Block& b) {
     Move move = move_of(b, machine_);
     if (!move.curve) {  // a dwell: the motion stops (no smoothing or blend across it) and stays
       smoother_.flush(smoothed_);
@@ -45,7 +45,7 @@ void ProgramPath::read(const std::string& program, const PathHandlers& handlers)
       take(ready, handlers);
     }
     if (handlers.block) handlers.block(b);
-  });
+  }, reader);
   smoother_.flush(smoothed_);
   blend();
   blender_.flush(ready);

@@ -9,6 +9,7 @@ std::string summary_json(const std::string& program, const Machine& machine, con
   nlohmann::ordered_json j;
   j["program"] = program;
   j["machine"] = machine.source;
+  if (extras.dialect) j["dialect"] = {{"name", gcode::to_string(extras.dialect->dialect)}, {"reason", extras.dialect->reason}};
   j["servo_period_s"] = machine.servo_period_s;
   j["setpoints"] = r.samples;
   j["total_time_s"] = total_time_s;

@@ -11,6 +11,7 @@
 // reads the whole program without keeping any block, and only if it is valid reads it again and
 // hands the blocks out. A program with an error so yields no block to later stages.
 #include <kontur/gcode/block.hpp>
+#include <kontur/gcode/dialect.hpp>
 #include <kontur/tolerances.hpp>
 
 #include <array>
@@ -23,14 +24,6 @@
 
 namespace kontur::gcode {
 
-/// The G-code dialect a program is written in: how it spells comments, parameters, expressions
-/// and control flow (docs/gcode.md, "Dialects"). The blocks it gives are the same for every dialect.
-enum class Dialect {
-  linuxcnc,  ///< LinuxCNC's RS274NGC: #parameters, [expressions], O-word subroutines and loops
-};
-/// Stable lower-case name of a dialect ("linuxcnc").
-[[nodiscard]] const char* to_string(Dialect dialect) noexcept;
-
 /// Reader settings.
 struct ReaderOptions {
   /// Block delete switch: lines starting with '/' are skipped when true (the default), read when false.
@@ -40,8 +33,11 @@ struct ReaderOptions {
   /// O-word loop iterations and subroutine calls allowed in the whole program; more is an error
   /// (an endless loop). Default tolerances::gcode_max_loop_iterations.
   long max_loop_iterations = tolerances::gcode_max_loop_iterations;
-  /// The program's dialect (last, so that positional initialisers of the fields above still work).
-  Dialect dialect = Dialect::linuxcnc;
+  /// The program's dialect (last, so that positional initialisers of the fields above still work);
+  /// none: detected from the program (detect_dialect).
+  std::optional<Dialect> dialect;
+  /// Why `dialect` was given, for messages and summaries (empty: "given").
+  std::string dialect_reason;
 };
 
 /// Reads a program and hands out its blocks one by one.
@@ -66,6 +62,8 @@ public:
   [[nodiscard]] std::size_t warning_count() const noexcept;
   /// Lines read so far.
   [[nodiscard]] long lines_read() const noexcept;
+  /// The dialect the program is read in (ReaderOptions::dialect, or detected) and why.
+  [[nodiscard]] const DialectChoice& dialect() const noexcept;
 
 private:
   struct Impl;
@@ -83,6 +81,7 @@ struct ProgramSummary {
   long blocks_without_length = 0;                  ///< conic blocks, whose length is not known yet
   std::size_t warning_count = 0;                   ///< warnings
   std::vector<std::string> warnings;               ///< the first warnings
+  DialectChoice dialect;                           ///< the dialect it was read in, and why
 };
 
 /// Reads the whole program and returns its totals; `on_block` (optional) sees every block with
@@ -92,7 +91,8 @@ ProgramSummary check_program(const std::string& path, const ReaderOptions& optio
 
 /// The later stages' entry: validates the whole program first (no block is handed out if it has an
 /// error: InputError is thrown), then reads it again and calls `on_block` for every block.
-void for_each_block(const std::string& path, const std::function<void(const Block&)>& on_block,
-                    const ReaderOptions& options = {});
+/// Returns the dialect the program was read in.
+DialectChoice for_each_block(const std::string& path, const std::function<void(const Block&)>& on_block,
+                             const ReaderOptions& options = {});
 
 }  // namespace kontur::gcode

@@ -5,6 +5,7 @@
 // One place, so that the pipeline, `kontur verify` and the tests see the same path.
 #include <functional>
 #include <kontur/gcode/block.hpp>
+#include <kontur/gcode/reader.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/program/corner_blender.hpp>
 #include <kontur/program/line_smoother.hpp>
@@ -33,7 +34,11 @@ class ProgramPath {
   /// Reads `program` (gcode::for_each_block: a program with an error yields nothing) and hands on
   /// its moves and dwells; the moves are kept (moves(), the same vector from one read to the next:
   /// each read starts it anew).
-  void read(const std::string& program, const PathHandlers& handlers);
+  /// `reader`: block delete and the dialect (none: detected).
+  void read(const std::string& program, const PathHandlers& handlers, const gcode::ReaderOptions& reader = {});
+
+  /// The dialect the last read program was read in, and why.
+  [[nodiscard]] const gcode::DialectChoice& dialect() const noexcept { return dialect_; }
 
   /// Every move of the path, in order: moves()[id].id == id.
   [[nodiscard]] const std::vector<Move>& moves() const noexcept { return moves_; }
@@ -49,6 +54,7 @@ class ProgramPath {
   CornerBlender blender_;
   std::vector<Move> smoothed_;  // moves out of the smoother, into the blender
   std::vector<Move> moves_;
+  gcode::DialectChoice dialect_;
 };
 
 }  // namespace kontur::program

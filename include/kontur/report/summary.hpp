@@ -1,4 +1,5 @@
 #pragma once
+#include <kontur/gcode/dialect.hpp>
 // The JSON summary of a run or of a check of a setpoint file (docs/setpoints.md): per program
 // (time, setpoints, maxima against the limits, pass/fail, failures) and per move ("blocks").
 // Built here, in the library, so that the command, the tests and the bindings print the same.
@@ -15,6 +16,7 @@ namespace kontur::report {
 struct SummaryExtras {
   std::optional<double> time_optimal_s;      ///< run --time-optimal: the reference time [s] (and time_ratio)
   std::optional<std::string> setpoint_file;  ///< verify: the file checked
+  std::optional<gcode::DialectChoice> dialect;  ///< the dialect the program was read in, and why
 };
 
 /// The summary as JSON text (indented by 2, ending in a newline). `program` as the user named it;

@@ -1,0 +1,43 @@
+#include "program_options.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <filesystem>
+
+namespace kontur::app {
+
+void add_program_read_options(CLI::App* cmd, ProgramReadOptions& options) {
+  cmd->add_option("--dialect", options.dialect,
+                  fmt::format("the program's G-code dialect: {} (default: the machine file's, else detected from the "
+                              "program and printed with the reason)",
+                              gcode::dialect_names()));
+  cmd->add_flag("--no-block-delete", options.no_block_delete, "read blocks starting with '/' (skipped by default)");
+}
+
+gcode::ReaderOptions reader_options(const ProgramReadOptions& options, const std::string& program,
+                                    const Machine* machine, bool quiet) {
+  gcode::ReaderOptions ro;
+  ro.block_delete = !options.no_block_delete;
+  std::optional<gcode::Dialect> given;
+  if (!options.dialect.empty()) {
+    given = gcode::parse_dialect(options.dialect);
+    if (!given)
+      throw CLI::ValidationError("--dialect", fmt::format("{}: not a G-code dialect (expected one of {})",
+                                                          options.dialect, gcode::dialect_names()));
+  }
+  // A program that cannot be opened is reported by the reader, with its own message.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(program, ec)) {
+    ro.dialect = given;
+    return ro;
+  }
+  const gcode::DialectChoice choice = gcode::choose_dialect(
+      program, given, machine ? machine->dialect : std::nullopt, machine ? machine->source : std::string());
+  ro.dialect = choice.dialect;
+  ro.dialect_reason = choice.reason;
+  if (!quiet) std::fprintf(stderr, "kontur: dialect: %s (%s)\n", gcode::to_string(choice.dialect), choice.reason.c_str());
+  return ro;
+}
+
+}  // namespace kontur::app

@@ -1,0 +1,228 @@
+// Dialect names and the detection of a program's dialect from its first lines (dialect.hpp).
+// Each line is looked at once, upper-cased, for the marks of each dialect; the strongest kind of
+// mark found decides (a Sinumerik or LinuxCNC construct over a grbl `$` line over Fanuc's syntax
+// over a control named in a comment over the file's extension), the first of its kind names the
+// line in the reason.
+#include <kontur/error.hpp>
+#include <kontur/gcode/dialect.hpp>
+#include <kontur/tolerances.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <regex>
+#include <string>
+
+namespace kontur::gcode {
+
+const char* to_string(Dialect dialect) noexcept {
+  switch (dialect) {
+    case Dialect::linuxcnc: return "linuxcnc";
+    case Dialect::fanuc: return "fanuc";
+    case Dialect::haas: return "haas";
+    case Dialect::mitsubishi: return "mitsubishi";
+    case Dialect::sinumerik: return "sinumerik";
+    case Dialect::grbl: return "grbl";
+    case Dialect::mach3: return "mach3";
+  }
+  return "?";
+}
+
+std::optional<Dialect> parse_dialect(std::string_view name) noexcept {
+  for (Dialect d : all_dialects) {
+    const std::string_view n = to_string(d);
+    if (n.size() == name.size() &&
+        std::equal(n.begin(), n.end(), name.begin(), [](char a, char b) {
+          return a == std::tolower(static_cast<unsigned char>(b));
+        }))
+      return d;
+  }
+  return std::nullopt;
+}
+
+std::string dialect_names() {
+  std::string s;
+  for (Dialect d : all_dialects) s += (s.empty() ? "" : "|") + std::string(to_string(d));
+  return s;
+}
+
+namespace {
+
+// Kinds of marks, strongest first.
+enum Strength { syntax_sinumerik_or_linuxcnc = 0, grbl_command = 1, fanuc_syntax = 2, named = 3, extension = 4 };
+
+struct Mark {
+  Dialect dialect = Dialect::linuxcnc;
+  std::string reason;
+  bool found = false;
+};
+
+// The line's text without comments "( )" and after ';', and the comments' text, both upper case.
+void split_line(std::string_view raw, std::string& code, std::string& comments) {
+  code.clear();
+  comments.clear();
+  int depth = 0;
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    const char c = static_cast<char>(std::toupper(static_cast<unsigned char>(raw[i])));
+    if (depth == 0 && c == ';') {
+      for (std::size_t k = i + 1; k < raw.size(); ++k)
+        comments += static_cast<char>(std::toupper(static_cast<unsigned char>(raw[k])));
+      break;
+    }
+    if (c == '(') ++depth;
+    if (depth > 0) comments += c;
+    else code += c;
+    if (c == ')' && depth > 0) --depth;
+  }
+}
+
+// The control a comment names, if any.
+std::optional<Dialect> named_control(const std::string& comments, std::string& word) {
+  struct Name {
+    const char* text;
+    Dialect dialect;
+  };
+  static constexpr Name names[] = {
+      {"SINUMERIK", Dialect::sinumerik}, {"SIEMENS", Dialect::sinumerik}, {"HAAS", Dialect::haas},
+      {"MITSUBISHI", Dialect::mitsubishi}, {"MELDAS", Dialect::mitsubishi}, {"MACH3", Dialect::mach3},
+      {"MACH 3", Dialect::mach3}, {"MACH4", Dialect::mach3}, {"GRBL", Dialect::grbl}, {"FANUC", Dialect::fanuc},
+      {"LINUXCNC", Dialect::linuxcnc}, {"EMC2", Dialect::linuxcnc}};
+  for (const Name& n : names)
+    if (comments.find(n.text) != std::string::npos) {
+      word = n.text;
+      return n.dialect;
+    }
+  return std::nullopt;
+}
+
+std::string first_token(const std::string& code) {
+  const auto b = code.find_first_not_of(" \t");
+  if (b == std::string::npos) return {};
+  auto e = code.find_first_of(" \t", b);
+  return code.substr(b, e == std::string::npos ? std::string::npos : e - b);
+}
+
+}  // namespace
+
+DialectChoice detect_dialect(std::string_view name, std::string_view text) {
+  // Sinumerik: headers, DEF, R parameters, labels' jumps, structured control flow without O-words,
+  // cycles, frames, CR= / AP= / TURN=, G642.
+  static const std::regex sinumerik_re(
+      R"(^\s*%_N_\w+|^\s*%(MPF|SPF)\b|(^|[^A-Z#<_])(DEF\s+(REAL|INT|BOOL|AXIS|FRAME|STRING|CHAR)\b|R\d+\s*=|GOTO[FBC]\b|CYCLE\d+\s*\(|MCALL\b|ENDIF\b|ENDWHILE\b|ENDFOR\b|ENDLOOP\b|MSG\s*\(|A?TRANS\b|A?ROT\b|A?SCALE\b|A?MIRROR\b|CR\s*=|AP\s*=|RP\s*=|TURN\s*=|G64[1-5]\b|SUPA\b)|^\s*(N\d+\s+)?(IF|WHILE|FOR|LOOP|REPEAT|UNTIL|ELSE|RET)\b(?!\s*\[))");
+  // LinuxCNC: O-word keywords, named parameters, its print comments.
+  static const std::regex linuxcnc_re(
+      R"(^\s*(N\d+\s*)?O\s*(<[^>]*>|\d+)\s*(SUB|ENDSUB|CALL|RETURN|IF|ELSEIF|ELSE|ENDIF|WHILE|ENDWHILE|DO|REPEAT|ENDREPEAT|BREAK|CONTINUE)\b|#<)");
+  static const std::regex linuxcnc_comment_re(R"(^\((DEBUG|MSG|PRINT|LOGOPEN|PROBEOPEN),)");
+  static const std::regex grbl_re(R"(^\s*\$(\d+\s*=|[HXJCGNI#$]))");
+  // Fanuc's family: program numbers, Macro B control flow, subprogram and macro calls.
+  static const std::regex program_number_re(R"(^\s*%?\s*([O:]\d+))");
+  static const std::regex macro_re(
+      R"(^\s*(N\d+\s*)?(IF\s*\[.*\]\s*(GOTO|THEN)|WHILE\s*\[.*\]\s*DO\s*\d|END\s*\d\b|GOTO\s*\d)|(^|[^0-9.])(M98\s*P|G65\s*P|M97\s*P))");
+
+  Mark marks[5];
+  auto note = [&](Strength s, Dialect d, std::string reason) {
+    Mark& m = marks[s];
+    if (m.found) return;
+    m = Mark{d, std::move(reason), true};
+  };
+  std::optional<Dialect> fanuc_family_name;  // a comment naming Haas / Mitsubishi / Mach3 / Fanuc
+  std::string fanuc_family_word;
+  long fanuc_family_line = 0;
+
+  std::string code, comments;
+  long line = 0;
+  std::size_t at = 0;
+  while (at < text.size() && line < tolerances::gcode_dialect_detection_lines) {
+    std::size_t end = text.find('\n', at);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view raw = text.substr(at, end - at);
+    at = end + 1;
+    ++line;
+    if (!raw.empty() && raw.back() == '\r') raw.remove_suffix(1);
+    if (raw.size() > static_cast<std::size_t>(tolerances::gcode_max_line_length)) continue;
+    split_line(raw, code, comments);
+    std::smatch m;
+    if (!marks[syntax_sinumerik_or_linuxcnc].found) {
+      if (std::regex_search(code, m, linuxcnc_re) || std::regex_search(comments, m, linuxcnc_comment_re))
+        note(syntax_sinumerik_or_linuxcnc, Dialect::linuxcnc,
+             fmt::format("LinuxCNC's '{}' on line {}", std::string(m[0]).substr(0, 24), line));
+      else if (std::regex_search(code, m, sinumerik_re)) {
+        std::string what = m[0];
+        what.erase(0, what.find_first_not_of(" \t"));
+        if (!what.empty() && !std::isalnum(static_cast<unsigned char>(what[0])) && what[0] != '%' && what[0] != '_')
+          what.erase(0, 1);
+        note(syntax_sinumerik_or_linuxcnc, Dialect::sinumerik, fmt::format("Sinumerik's '{}' on line {}", what, line));
+      }
+    }
+    if (!marks[grbl_command].found && std::regex_search(code, m, grbl_re))
+      note(grbl_command, Dialect::grbl, fmt::format("grbl command '{}' on line {}", first_token(code), line));
+    if (!marks[fanuc_syntax].found) {
+      if (std::regex_search(code, m, program_number_re) &&
+          !std::regex_search(code, linuxcnc_re)) {
+        const std::string number = m[1];
+        // "O1234" alone or with a comment: a program number; "O1234 G0" is not.
+        const std::string rest = code.substr(static_cast<std::size_t>(m.position(0) + m.length(0)));
+        if (rest.find_first_not_of(" \t") == std::string::npos)
+          note(fanuc_syntax, Dialect::fanuc, fmt::format("program number {} on line {}", number, line));
+      } else if (std::regex_search(code, m, macro_re)) {
+        std::string what = m[0];
+        what.erase(0, what.find_first_not_of(" \t0123456789N"));
+        note(fanuc_syntax, Dialect::fanuc, fmt::format("'{}' on line {}", what.substr(0, 24), line));
+      }
+    }
+    std::string word;
+    if (auto d = named_control(comments, word)) {
+      const std::string reason = fmt::format("a comment naming {} on line {}", word, line);
+      note(named, *d, reason);
+      if (!fanuc_family_name && (*d == Dialect::haas || *d == Dialect::mitsubishi || *d == Dialect::mach3 ||
+                                 *d == Dialect::fanuc)) {
+        fanuc_family_name = *d;
+        fanuc_family_word = word;
+        fanuc_family_line = line;
+      }
+    }
+    if (code.find("G187") != std::string::npos && !fanuc_family_name) {  // Haas's accuracy control
+      fanuc_family_name = Dialect::haas;
+      fanuc_family_word = "G187 (Haas)";
+      fanuc_family_line = line;
+    }
+  }
+  std::string ext;
+  if (const auto dot = name.rfind('.'); dot != std::string_view::npos)
+    for (char c : name.substr(dot + 1)) ext += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == "mpf" || ext == "spf") note(extension, Dialect::sinumerik, fmt::format("file extension .{}", ext));
+  if (ext == "ngc") note(extension, Dialect::linuxcnc, "file extension .ngc");
+
+  for (Mark& m : marks) {
+    if (!m.found) continue;
+    if (&m == &marks[fanuc_syntax] && fanuc_family_name) {
+      return {*fanuc_family_name, fmt::format("{}, and a comment naming {} on line {}", m.reason, fanuc_family_word,
+                                              fanuc_family_line)};
+    }
+    return {m.dialect, m.reason};
+  }
+  return {Dialect::linuxcnc, fmt::format("no mark of another dialect in the first {} lines: LinuxCNC's reading",
+                                         std::min<long>(line, tolerances::gcode_dialect_detection_lines))};
+}
+
+DialectChoice detect_dialect_of_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("file", fmt::format("{}: cannot open the program", path));
+  std::string head(256 * 1024, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  return detect_dialect(path, head);
+}
+
+DialectChoice choose_dialect(const std::string& path, std::optional<Dialect> given, std::optional<Dialect> from_machine,
+                             const std::string& machine_source) {
+  if (given) return {*given, "given with --dialect"};
+  if (from_machine)
+    return {*from_machine, fmt::format("the machine file{}{}'s dialect", machine_source.empty() ? "" : " ",
+                                       machine_source)};
+  return detect_dialect_of_file(path);
+}
+
+}  // namespace kontur::gcode

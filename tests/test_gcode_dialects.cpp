@@ -1,0 +1,146 @@
+// Dialects: the name table, the detection of a program's dialect from its text (each kind of mark,
+// their order of strength, the default), and the few rules in which a control differs from
+// LinuxCNC's (Fanuc's G80 keeping the motion mode, grbl's `$` lines).
+#include <gtest/gtest.h>
+#include <kontur/error.hpp>
+#include <kontur/gcode/reader.hpp>
+
+#include <string>
+#include <vector>
+
+namespace kontur::gcode {
+namespace {
+
+std::vector<Block> read(const std::string& program, ReaderOptions options = {}, const std::string& name = "t.nc") {
+  Reader reader(name, program, options);
+  std::vector<Block> blocks;
+  Block b;
+  while (reader.next(b)) blocks.push_back(b);
+  return blocks;
+}
+
+std::string error_of(const std::string& program, ReaderOptions options) {
+  try {
+    read(program, options);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(GcodeDialect, NamesRoundTripAndUnknownNamesAreRefused) {
+  for (Dialect d : all_dialects) EXPECT_EQ(parse_dialect(to_string(d)), d);
+  EXPECT_EQ(parse_dialect("HAAS"), Dialect::haas);
+  EXPECT_FALSE(parse_dialect("heidenhain").has_value());
+  EXPECT_FALSE(parse_dialect("").has_value());
+  EXPECT_EQ(dialect_names(), "linuxcnc|fanuc|haas|mitsubishi|sinumerik|grbl|mach3");
+}
+
+struct DetectionCase {
+  const char* name;
+  const char* file;
+  const char* text;
+  Dialect dialect;
+  const char* reason;
+};
+
+class DialectDetection : public ::testing::TestWithParam<DetectionCase> {};
+
+TEST_P(DialectDetection, TellsTheDialectAndTheMarkThatToldIt) {
+  const DetectionCase& c = GetParam();
+  const DialectChoice got = detect_dialect(c.file, c.text);
+  EXPECT_EQ(got.dialect, c.dialect) << got.reason;
+  EXPECT_EQ(got.reason, c.reason);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Gcode, DialectDetection,
+    ::testing::Values(
+        DetectionCase{"haas_program_number", "p.nc", "%\nO78237 (PART)\n(HAAS VF-2)\nG0 X0\nM30\n%\n", Dialect::haas,
+                      "program number O78237 on line 2, and a comment naming HAAS on line 3"},
+        DetectionCase{"fanuc_colon_number", "p.nc", ":0097\nG0 X0\nM30\n", Dialect::fanuc,
+                      "program number :0097 on line 1"},
+        DetectionCase{"fanuc_macro_while", "p.nc", "#1=0\nWHILE [#1 LT 3] DO1\n#1=#1+1\nEND1\nM30\n", Dialect::fanuc,
+                      "'WHILE [#1 LT 3] DO1' on line 2"},
+        DetectionCase{"fanuc_subprogram_call", "p.nc", "G0 X0\nM98 P1000 L2\nM30\n", Dialect::fanuc,
+                      "'M98 P' on line 2"},
+        DetectionCase{"mitsubishi_named", "p.nc", "O1000\n(MITSUBISHI M80)\nG0 X0\nM30\n", Dialect::mitsubishi,
+                      "program number O1000 on line 1, and a comment naming MITSUBISHI on line 2"},
+        DetectionCase{"sinumerik_header", "p.txt", "%_N_PART1_MPF\n;$PATH=/_N_WKS_DIR\nG0 X0\nM30\n",
+                      Dialect::sinumerik, "Sinumerik's '%_N_PART1_MPF' on line 1"},
+        DetectionCase{"sinumerik_r_parameter", "p.txt", "G0 X0\nR1=36 R2=5\nG1 X=R1\nM30\n", Dialect::sinumerik,
+                      "Sinumerik's 'R1=' on line 2"},
+        DetectionCase{"sinumerik_over_program_number", "p.txt", "O1\nDEF REAL DEPTH\nM30\n", Dialect::sinumerik,
+                      "Sinumerik's 'DEF REAL' on line 2"},
+        DetectionCase{"linuxcnc_o_word", "p.nc", "o<square> sub\nG1 X1\no<square> endsub\nM2\n", Dialect::linuxcnc,
+                      "LinuxCNC's 'O<SQUARE> SUB' on line 1"},
+        DetectionCase{"linuxcnc_named_parameter", "p.nc", "#<depth> = 2\nG1 Z-#<depth>\nM2\n", Dialect::linuxcnc,
+                      "LinuxCNC's '#<' on line 1"},
+        DetectionCase{"grbl_setting_line", "p.gcode", "$H\nG0 X0\n", Dialect::grbl, "grbl command '$H' on line 1"},
+        DetectionCase{"mach3_named_in_comment", "p.tap", "(Post: Mach3 mill)\nG0 X0\nM30\n", Dialect::mach3,
+                      "a comment naming MACH3 on line 1"},
+        DetectionCase{"sinumerik_by_extension", "PART.MPF", "G0 X0\nM30\n", Dialect::sinumerik,
+                      "file extension .mpf"},
+        DetectionCase{"plain_program_is_linuxcnc", "p.nc", "G0 X0\nG1 X1 F100\nM2\n", Dialect::linuxcnc,
+                      "no mark of another dialect in the first 3 lines: LinuxCNC's reading"},
+        // Fanuc's `#1=` alone is also LinuxCNC's: not a mark.
+        DetectionCase{"numbered_parameter_is_no_mark", "p.nc", "#1=2\nG1 X#1 F100\nM2\n", Dialect::linuxcnc,
+                      "no mark of another dialect in the first 3 lines: LinuxCNC's reading"},
+        // "O1234 G0" is not a program number line.
+        DetectionCase{"o_word_with_code_is_no_program_number", "p.nc", "G0 X0\nM2\n(O1234)\n", Dialect::linuxcnc,
+                      "no mark of another dialect in the first 3 lines: LinuxCNC's reading"}),
+    [](const ::testing::TestParamInfo<DetectionCase>& i) { return std::string(i.param.name); });
+
+TEST(GcodeDialect, ReaderDetectsTheDialectUnlessOneIsGiven) {
+  Reader detected("p.nc", "O1234 (PART)\nG0 X1\nM30\n");
+  EXPECT_EQ(detected.dialect().dialect, Dialect::fanuc);
+  EXPECT_EQ(detected.dialect().reason, "program number O1234 on line 1");
+  ReaderOptions options;
+  options.dialect = Dialect::mach3;
+  Reader given("p.nc", "O1234 (PART)\nG0 X1\nM30\n", options);
+  EXPECT_EQ(given.dialect().dialect, Dialect::mach3);
+  EXPECT_EQ(given.dialect().reason, "given");
+}
+
+// A Fanuc keeps G0 / G1 modal through a drilling cycle: after G80, axis words move in that mode.
+TEST(GcodeDialect, FanucG80RestoresTheMotionModeBeforeTheCycle) {
+  const std::string program = "G90 G17 G21\nG0 Z10\nG1 X0 Y0 F300\nG81 X10 Y0 Z-2 R2 F100\nG80\nX20 Y5\nM30\n";
+  ReaderOptions fanuc;
+  fanuc.dialect = Dialect::fanuc;
+  const auto blocks = read(program, fanuc);
+  ASSERT_FALSE(blocks.empty());
+  const Block& last = blocks.back();
+  EXPECT_EQ(last.type, BlockType::line);  // G1, as before the cycle
+  EXPECT_DOUBLE_EQ(last.end.x(), 20.0);
+  EXPECT_DOUBLE_EQ(last.end.y(), 5.0);
+  EXPECT_DOUBLE_EQ(last.feed.value, 100.0);  // F is modal: the cycle's
+  // LinuxCNC refuses the same program: G80 left no motion mode.
+  ReaderOptions linuxcnc;
+  linuxcnc.dialect = Dialect::linuxcnc;
+  EXPECT_NE(error_of(program, linuxcnc).find("axis words without a motion command"), std::string::npos);
+}
+
+TEST(GcodeDialect, GrblSettingLinesAreIgnoredWithAWarningAndHomingOrJoggingIsRefused) {
+  ReaderOptions grbl;
+  grbl.dialect = Dialect::grbl;
+  Reader reader("g.gcode", "$32=0\n$X\nG21 G90\nG1 X5 F100\nM2\n", grbl);
+  Block b;
+  int n = 0;
+  while (reader.next(b)) ++n;
+  EXPECT_EQ(n, 1);
+  ASSERT_EQ(reader.warning_count(), 2u);
+  EXPECT_NE(reader.warnings()[0].find("g.gcode:1:1: warning: $32=0: a grbl setting or command, ignored"),
+            std::string::npos);
+  EXPECT_EQ(error_of("G21\n$H\nG1 X1 F100\n", grbl),
+            "t.nc:2:1: $H: grbl's homing cycle moves to the machine's home switches, which a machine file does not "
+            "give (dialect grbl); home the machine before the program");
+  EXPECT_NE(error_of("$J=G91 X10 F100\n", grbl).find("t.nc:1:1: $J=G91 X10 F100: a grbl jog is a manual motion"),
+            std::string::npos);
+  // In LinuxCNC a '$' line is not G-code.
+  ReaderOptions linuxcnc;
+  linuxcnc.dialect = Dialect::linuxcnc;
+  EXPECT_NE(error_of("$X\n", linuxcnc), "");
+}
+
+}  // namespace
+}  // namespace kontur::gcode
