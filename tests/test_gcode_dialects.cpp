@@ -120,6 +120,32 @@ TEST(GcodeDialect, FanucG80RestoresTheMotionModeBeforeTheCycle) {
   EXPECT_NE(error_of(program, linuxcnc).find("axis words without a motion command"), std::string::npos);
 }
 
+// Fanuc posts write "G00 G91 G28 Z0": G0 sets the mode, Z0 is G28's (incremental: home straight up).
+TEST(GcodeDialect, FanucMotionCodeBesideG28OnlySetsTheMode) {
+  const std::string program = "G21 G90\nG0 X5 Y5 Z5\nG00 G91 G28 Z0\nG90\nX7\nM30\n";
+  ReaderOptions fanuc;
+  fanuc.dialect = Dialect::fanuc;
+  const auto blocks = read(program, fanuc);
+  ASSERT_EQ(blocks.size(), 4u);  // G0; G28 through its intermediate point (here: where it is); X7
+  EXPECT_EQ(blocks[2].type, BlockType::rapid);  // G28 to the reference position (#5161.. = 0) in Z only
+  EXPECT_DOUBLE_EQ(blocks[2].end.z(), 0.0);
+  EXPECT_DOUBLE_EQ(blocks[2].end.x(), 5.0);
+  EXPECT_EQ(blocks[3].type, BlockType::rapid);  // G0 stayed the motion mode
+  EXPECT_DOUBLE_EQ(blocks[3].end.x(), 7.0);
+  ReaderOptions linuxcnc;
+  linuxcnc.dialect = Dialect::linuxcnc;
+  EXPECT_EQ(error_of(program, linuxcnc), "t.nc:3:9: G28 and G0 in one block: both use the axis words");
+}
+
+// An M98 ignored as a machine's own M code would run the subprogram's body once instead of L times.
+TEST(GcodeDialect, SubprogramCallsAreNeverIgnoredInLinuxcnc) {
+  ReaderOptions linuxcnc;
+  linuxcnc.dialect = Dialect::linuxcnc;
+  EXPECT_EQ(error_of("G0 X0\nM98 P200 L6\nM2\n", linuxcnc),
+            "t.nc:2:1: M98: subprogram calls and returns (M97, M98, M99) are not LinuxCNC's: read the program with "
+            "--dialect fanuc, haas or mach3");
+}
+
 TEST(GcodeDialect, GrblSettingLinesAreIgnoredWithAWarningAndHomingOrJoggingIsRefused) {
   ReaderOptions grbl;
   grbl.dialect = Dialect::grbl;

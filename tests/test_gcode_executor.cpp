@@ -144,7 +144,8 @@ TEST(GcodeModalGroups, TablesSortCodesIntoTheirGroups) {
   EXPECT_EQ(m_code_info(30).group, m_stop);
   EXPECT_EQ(m_code_info(64).group, m_io);
   EXPECT_EQ(m_code_info(150).group, -2);
-  EXPECT_EQ(m_code_info(99).group, -1);
+  EXPECT_EQ(m_code_info(99).group, -3);  // subprogram return: refused, never ignored
+  EXPECT_EQ(m_code_info(96).group, -1);
 }
 
 TEST(GcodeModalGroups, CamSafetyLineG80G0KeepsTheMotion) {

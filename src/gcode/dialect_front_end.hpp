@@ -39,6 +39,9 @@ struct DialectRules {
   /// G80 cancels only the canned cycle: the G0 / G1 / G2 / G3 in effect before it is the motion
   /// mode again (Fanuc group 01 and group 09 are apart), instead of "no motion mode" (LinuxCNC).
   bool g80_restores_motion = false;
+  /// A motion code (G0..G3) beside G28 / G30 / G92 / G10 only sets the motion mode; the block's axis
+  /// words are the non-modal code's (Fanuc's "G0 G91 G28 Z0"). LinuxCNC refuses the block.
+  bool motion_code_beside_nonmodal = false;
 };
 /// The rules of `dialect` (dialect_registry.cpp).
 [[nodiscard]] DialectRules rules_of(Dialect dialect) noexcept;

@@ -13,7 +13,10 @@ DialectRules rules_of(Dialect dialect) noexcept {
     case Dialect::fanuc:
     case Dialect::haas:
     case Dialect::mitsubishi:
-    case Dialect::mach3: r.g80_restores_motion = true; break;
+    case Dialect::mach3:
+      r.g80_restores_motion = true;
+      r.motion_code_beside_nonmodal = true;
+      break;
     case Dialect::linuxcnc:
     case Dialect::sinumerik:
     case Dialect::grbl: break;

@@ -113,7 +113,8 @@ void Executor::check_words_allowed(const BlockCodes& codes) const {
                      w->keyword == Keyword::cip ? "CIP" : "CONIC", g_name(motion_word),
                      w->keyword == Keyword::cip ? "CIP" : "CONIC"));
   const bool nonmodal_uses_axes = nonmodal == 100 || nonmodal == 280 || nonmodal == 300 || nonmodal == 920;
-  if (nonmodal_uses_axes && (motion_word >= 0 && motion_word != motion_none))
+  // Fanuc's "G0 G91 G28 Z0": the motion code only sets the mode, the axis words are G28's.
+  if (nonmodal_uses_axes && (motion_word >= 0 && motion_word != motion_none) && !rules_.motion_code_beside_nonmodal)
     fail(codes.column(g_nonmodal), "axis-words",
          fmt::format("{} and {} in one block: both use the axis words", g_name(nonmodal), g_name(motion_word)));
 }

@@ -101,6 +101,8 @@ CodeInfo m_code_info(int m) noexcept {
       std::lower_bound(std::begin(m_codes), std::end(m_codes), m, [](const MCodeEntry& e, int v) { return e.m < v; });
   if (it != std::end(m_codes) && it->m == m) return CodeInfo{it->group, nullptr};
   if (m >= 100 && m <= 199) return CodeInfo{-2, "user M codes M100-M199 (they run external programs)"};
+  // Subprogram calls change the path: never ignored like a machine's own M code.
+  if (m >= 97 && m <= 99) return CodeInfo{-3, "subprogram calls and returns (M97, M98, M99)"};
   return {};
 }
 
@@ -136,6 +138,10 @@ BlockCodes classify_codes(const Words& w, const Diagnostics& diag) {
     const int col = w.m_column[static_cast<std::size_t>(i)];
     const CodeInfo info = m_code_info(m);
     const int grp = info.group;
+    if (grp == -3)
+      diag.fail(col, "unsupported",
+                fmt::format("M{}: {} are not LinuxCNC's: read the program with --dialect fanuc, haas or mach3", m,
+                            info.unsupported));
     if (grp < 0) {  // not in the tables: ignored (the executor warns)
       if (codes.ignored_m_count < static_cast<int>(codes.ignored_m.size())) {
         codes.ignored_m[static_cast<std::size_t>(codes.ignored_m_count)] = m;

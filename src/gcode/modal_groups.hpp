@@ -27,7 +27,8 @@ inline constexpr int motion_none = 800;  // G80
 
 /// What the tables say about a code.
 struct CodeInfo {
-  int group = -1;                     ///< modal group; -1 unknown, -2 deliberately not supported
+  int group = -1;                     ///< modal group; -1 unknown, -2 deliberately not supported, -3 refused
+                                      ///< even among the M codes otherwise ignored (M97-M99)
   const char* unsupported = nullptr;  ///< the feature not supported (group -2)
 };
 /// The G code `g10` (times 10: G6.2 is 62).
