@@ -1,5 +1,7 @@
 // libFuzzer target for the G-code reader: any bytes are a program; reading it must end with blocks
 // or an InputError, never a crash, hang, leak, sanitizer report, or a non-finite point or length.
+// Every dialect is fuzzed: the input's length modulo 8 picks one (7: detected from the text), so
+// that every seed stays a whole program and a mutation that changes the length changes the dialect.
 // Built with clang -fsanitize=fuzzer,address,undefined by fuzz/CMakeLists.txt (docs/gcode.md).
 #include <kontur/error.hpp>
 #include <kontur/gcode/reader.hpp>
@@ -19,6 +21,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     kontur::gcode::ReaderOptions options;
     options.max_loop_iterations = 10000;  // O-word loops: enough to explore, small enough not to time out
+    const std::size_t pick = size % 8;
+    if (pick < kontur::gcode::all_dialects.size()) options.dialect = kontur::gcode::all_dialects[pick];
     kontur::gcode::Reader reader("fuzz.ngc", std::move(text), options);
     kontur::gcode::Block b;
     long blocks = 0;

@@ -110,6 +110,18 @@ Machine read_machine_toml(const std::filesystem::path& file) {
     const std::string k(key.str());
     if (k == "name") {
       if (auto s = node.value<std::string>()) m.name = *s;
+    } else if (k == "subroutine_path") {
+      const toml::array* folders = node.as_array();
+      if (folders == nullptr)
+        fail(fmt::format("{}:{}", src, node.source().begin.line), "subroutine-path",
+             "subroutine_path must be an array of folders");
+      for (const auto& f : *folders) {
+        const auto folder = f.value<std::string>();
+        if (!folder)
+          fail(fmt::format("{}:{}", src, f.source().begin.line), "subroutine-path",
+               "subroutine_path: every folder is a string");
+        m.subroutine_path.push_back((file.parent_path() / *folder).lexically_normal().string());
+      }
     } else if (k == "dialect") {
       const auto name = node.value<std::string>();
       m.dialect = name ? gcode::parse_dialect(*name) : std::nullopt;
@@ -159,7 +171,7 @@ Machine read_machine_toml(const std::filesystem::path& file) {
       }
     } else {
       fail(fmt::format("{}:{}", src, node.source().begin.line), "unknown-field",
-           fmt::format("unknown field \"{}\" (expected name, dialect, max_feed_mm_min, rapid_feed_mm_min, "
+           fmt::format("unknown field \"{}\" (expected name, dialect, subroutine_path, max_feed_mm_min, rapid_feed_mm_min, "
                        "chord_tolerance_mm, path_tolerance_mm, servo_period_s, axes)",
                        k));
     }
@@ -274,6 +286,15 @@ Machine read_linuxcnc_ini(const std::filesystem::path& file) {
   if (auto v = number("EMCMOT", "SERVO_PERIOD")) m.servo_period_s = *v * 1e-9;
   if (auto v = number("KONTUR", "CHORD_TOLERANCE")) m.chord_tolerance_mm = *v * unit;
   if (auto v = number("KONTUR", "PATH_TOLERANCE")) m.path_tolerance_mm = *v * unit;
+  if (const auto* p = get("RS274NGC", "SUBROUTINE_PATH")) {  // folders separated by ':', relative to the INI
+    std::size_t at = 0;
+    while (at <= p->first.size()) {
+      const std::size_t colon = std::min(p->first.find(':', at), p->first.size());
+      const std::string folder = trim(p->first.substr(at, colon - at));
+      if (!folder.empty()) m.subroutine_path.push_back((file.parent_path() / folder).lexically_normal().string());
+      at = colon + 1;
+    }
+  }
   if (const auto* d = get("KONTUR", "DIALECT")) {
     m.dialect = gcode::parse_dialect(d->first);
     if (!m.dialect)
@@ -297,6 +318,12 @@ std::string to_toml(const Machine& m) {
                                 m.source, m.name, m.max_feed_mm_s * 60.0, m.rapid_feed_mm_s * 60.0,
                                 m.chord_tolerance_mm, m.path_tolerance_mm, m.servo_period_s);
   if (m.dialect) out += fmt::format("dialect = \"{}\"\n", gcode::to_string(*m.dialect));
+  if (!m.subroutine_path.empty()) {
+    out += "subroutine_path = [";
+    for (std::size_t i = 0; i < m.subroutine_path.size(); ++i)
+      out += fmt::format("{}\"{}\"", i ? ", " : "", m.subroutine_path[i]);
+    out += "]\n";
+  }
   for (const auto& a : m.axes) {
     const char* u = a.rotary ? "deg" : "mm";
     out += fmt::format("\n[axes.{}]\nmax_velocity = {}          # [{}/s]\nmax_acceleration = {}      # [{}/s^2]\n"

@@ -5,6 +5,8 @@
 #include <kontur/error.hpp>
 #include <kontur/gcode/reader.hpp>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -144,6 +146,59 @@ TEST(GcodeDialect, SubprogramCallsAreNeverIgnoredInLinuxcnc) {
   EXPECT_EQ(error_of("G0 X0\nM98 P200 L6\nM2\n", linuxcnc),
             "t.nc:2:1: M98: subprogram calls and returns (M97, M98, M99) are not LinuxCNC's: read the program with "
             "--dialect fanuc, haas or mach3");
+}
+
+// LinuxCNC's SUBROUTINE_PATH: o<name> call of a subroutine the program does not define runs
+// name.ngc from the first folder that has it; blocks and messages name the file they come from.
+TEST(GcodeDialect, LinuxcncSubroutineInItsOwnFileIsFoundOnThePath) {
+  const auto dir = std::filesystem::temp_directory_path() / "kontur_subroutine_path_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "subs");
+  std::ofstream(dir / "subs" / "square.ngc") << "(a square of side #1)\no<square> sub\nG91 G1 X#1 F100\nY#1\n"
+                                                "X-#1\nY-#1\nG90\no<square> endsub\nM2\n";
+  std::ofstream(dir / "subs" / "broken.ngc") << "o<broken> sub\nG1 Q\no<broken> endsub\n";
+  std::ofstream(dir / "main.ngc") << "G21 G90\nG0 X1 Y1\no<square> call [2]\no<square> call [3]\nG0 X0\nM2\n";
+  ReaderOptions options;
+  options.dialect = Dialect::linuxcnc;
+  options.subroutine_path = {(dir / "nothing_here").string(), (dir / "subs").string()};
+  Reader reader((dir / "main.ngc").string(), options);
+  std::vector<Block> blocks;
+  Block b;
+  while (reader.next(b)) blocks.push_back(b);
+  ASSERT_EQ(blocks.size(), 10u);  // G0, 4 sides twice, G0
+  EXPECT_DOUBLE_EQ(blocks[1].end.x(), 3.0);
+  EXPECT_DOUBLE_EQ(blocks[5].end.x(), 4.0);  // the second call, side 3
+  EXPECT_DOUBLE_EQ(blocks[8].end.y(), 1.0);
+  EXPECT_EQ(blocks[1].location.line, 3);
+  EXPECT_NE(blocks[1].location.file->find("square.ngc"), std::string::npos);
+  EXPECT_NE(blocks[9].location.file->find("main.ngc"), std::string::npos);
+  EXPECT_EQ(blocks[9].location.line, 5);
+
+  // Not found: the message names the file looked for and the folders.
+  options.subroutine_path = {(dir / "nothing_here").string()};
+  try {
+    Reader missing((dir / "main.ngc").string(), options);
+    while (missing.next(b)) {
+    }
+    FAIL() << "o<square> call read without its file";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(":3:1: O<SQUARE> call: subroutine not defined in the program, and no "
+                                         "square.ngc in the subroutine path"),
+              std::string::npos)
+        << e.what();
+  }
+  // An error inside the subroutine's file names that file and its line.
+  std::ofstream(dir / "main2.ngc") << "G0 X0\no<broken> call\nM2\n";
+  options.subroutine_path = {(dir / "subs").string()};
+  try {
+    Reader broken((dir / "main2.ngc").string(), options);
+    while (broken.next(b)) {
+    }
+    FAIL() << "a broken subroutine read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("broken.ngc:2:"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(GcodeDialect, GrblSettingLinesAreIgnoredWithAWarningAndHomingOrJoggingIsRefused) {

@@ -12,6 +12,10 @@ void add_program_read_options(CLI::App* cmd, ProgramReadOptions& options) {
                   fmt::format("the program's G-code dialect: {} (default: the machine file's, else detected from the "
                               "program and printed with the reason)",
                               gcode::dialect_names()));
+  cmd->add_option("--subroutine-path", options.subroutine_path,
+                  "folder searched for a subroutine in a file of its own (LinuxCNC: o<name> call runs name.ngc); "
+                  "repeat for more folders (default: the machine file's [RS274NGC] SUBROUTINE_PATH, else the "
+                  "program's folder)");
   cmd->add_flag("--no-block-delete", options.no_block_delete, "read blocks starting with '/' (skipped by default)");
 }
 
@@ -19,6 +23,7 @@ gcode::ReaderOptions reader_options(const ProgramReadOptions& options, const std
                                     const Machine* machine, bool quiet) {
   gcode::ReaderOptions ro;
   ro.block_delete = !options.no_block_delete;
+  ro.subroutine_path = options.subroutine_path;
   std::optional<gcode::Dialect> given;
   if (!options.dialect.empty()) {
     given = gcode::parse_dialect(options.dialect);

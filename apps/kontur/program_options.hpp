@@ -12,9 +12,10 @@ namespace kontur::app {
 struct ProgramReadOptions {
   std::string dialect;           ///< --dialect NAME (empty: the machine's, else detected)
   bool no_block_delete = false;  ///< --no-block-delete
+  std::vector<std::string> subroutine_path;  ///< --subroutine-path DIR (repeatable)
 };
 
-/// Adds --dialect and --no-block-delete to `cmd`.
+/// Adds --dialect, --subroutine-path and --no-block-delete to `cmd`.
 void add_program_read_options(CLI::App* cmd, ProgramReadOptions& options);
 
 /// The reader options for `program`: the dialect given with --dialect, else the machine's (if

@@ -34,6 +34,9 @@ struct Machine {
   /// The G-code dialect of the machine's control (TOML `dialect`, INI `[KONTUR] DIALECT`); none:
   /// each program's dialect is detected (gcode::detect_dialect). `--dialect` overrides it.
   std::optional<gcode::Dialect> dialect;
+  /// Folders searched for subroutines in files of their own (TOML `subroutine_path`, INI
+  /// `[RS274NGC] SUBROUTINE_PATH`, relative to the machine file); `--subroutine-path` overrides it.
+  std::vector<std::string> subroutine_path;
 
   /// The limits of axis `name` (X, Y, Z, A, B, C), or nullptr.
   [[nodiscard]] const AxisLimits* axis(char name) const noexcept;

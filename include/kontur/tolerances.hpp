@@ -1,5 +1,6 @@
 #pragma once
 #include <cstddef>
+#include <cstdint>
 // Every numerical tolerance of Kontur, in one place, with what it means and how it relates to
 // the others. Lengths are in [mm] unless stated; "relative" means relative to the quantity's
 // own scale (a curve's extent, a length, a parameter range).
@@ -123,6 +124,8 @@ inline constexpr double gcode_max_value = 1e9;
 /// Default largest number of O-word loop iterations and subroutine calls of a whole program
 /// (ReaderOptions::max_loop_iterations): more is taken as an endless loop.
 inline constexpr long gcode_max_loop_iterations = 10000000;
+/// Largest subroutine file read whole into memory (a LinuxCNC `o<name> call` of `name.ngc`) [bytes].
+inline constexpr std::uintmax_t gcode_max_subroutine_file_bytes = 64u << 20;
 /// Lines at the beginning of a program looked at to tell its dialect (gcode::detect_dialect): marks
 /// such as a program number or a Sinumerik header come first.
 inline constexpr int gcode_dialect_detection_lines = 400;

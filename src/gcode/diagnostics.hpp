@@ -41,6 +41,12 @@ public:
   [[nodiscard]] const LineContext& context() const noexcept { return ctx_; }
   /// The current 1-based line (0 before the first).
   [[nodiscard]] long line() const noexcept { return ctx_.line; }
+  /// The file being read changes (a subroutine in a file of its own, and back): its name goes into
+  /// messages and into the blocks' SourceLocation from now on.
+  void set_file(const std::shared_ptr<const std::string>& name) {
+    name_ = name;
+    ctx_.file = *name_;
+  }
   /// Sets the current line (the input as it reads or seeks; a block reporting at its first line).
   void set_line(long line) noexcept { ctx_.line = line; }
 

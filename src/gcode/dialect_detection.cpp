@@ -44,7 +44,10 @@ std::optional<Dialect> parse_dialect(std::string_view name) noexcept {
 
 std::string dialect_names() {
   std::string s;
-  for (Dialect d : all_dialects) s += (s.empty() ? "" : "|") + std::string(to_string(d));
+  for (Dialect d : all_dialects) {
+    if (!s.empty()) s += '|';
+    s += to_string(d);
+  }
   return s;
 }
 

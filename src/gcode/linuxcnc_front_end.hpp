@@ -82,6 +82,9 @@ private:
   // Reads lines without running them until the O-word `label` with one of `kinds`; leaves nl at it.
   OWord skip_to(const std::string& label, std::initializer_list<OKind> kinds, const char* what);
   Frame* find_frame(const std::string& label);
+  // The subroutine `label` from its own file on the subroutine path (ReaderOptions::subroutine_path),
+  // registered in subs; fails at `col` naming the file and the path if there is none.
+  std::map<std::string, SubStart, std::less<>>::iterator load_subroutine_file(const std::string& label, int col);
   void loop_guard(const std::string& label);
 };
 

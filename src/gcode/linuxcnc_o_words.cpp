@@ -4,6 +4,8 @@
 #include "message_format.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <filesystem>
 #include <cmath>
 #include <cstring>
 
@@ -68,6 +70,64 @@ LinuxcncFrontEnd::OWord LinuxcncFrontEnd::skip_to(const std::string& label, std:
   diag.fail_at_line(from, 1, "o-word", fmt::format("{}: {} not found before the end of the file", label, what));
 }
 
+std::map<std::string, LinuxcncFrontEnd::SubStart, std::less<>>::iterator
+LinuxcncFrontEnd::load_subroutine_file(const std::string& label, int col) {
+  // LinuxCNC: o<name> call of a subroutine not in the program runs name.ngc (lower case) of the
+  // first folder of SUBROUTINE_PATH that has it; the file holds o<name> sub ... o<name> endsub.
+  std::vector<std::string> folders = opt.subroutine_path;
+  if (folders.empty()) {
+    const std::filesystem::path program(*diag.name());
+    folders.push_back(program.has_parent_path() ? program.parent_path().string() : std::string("."));
+  }
+  std::string file;
+  const std::size_t open = label.find('<');  // labels are written "O<name>"
+  if (open != std::string::npos && label.size() > open + 2 && label.back() == '>') {
+    file = label.substr(open + 1, label.size() - open - 2);
+    for (char& c : file) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    file += ".ngc";
+  }
+  std::string path;
+  std::error_code ec;
+  for (const std::string& folder : folders)
+    if (!file.empty() && std::filesystem::is_regular_file(std::filesystem::path(folder) / file, ec)) {
+      path = (std::filesystem::path(folder) / file).string();
+      break;
+    }
+  if (path.empty()) {
+    std::string where;
+    for (const std::string& folder : folders) {
+      if (!where.empty()) where += ':';
+      where += folder;
+    }
+    fail(col, "o-word-call",
+         file.empty() ? fmt::format("{} call: subroutine not defined (define it with {} sub before the call)", label,
+                                    label)
+                      : fmt::format("{} call: subroutine not defined in the program, and no {} in the subroutine path "
+                                    "{} (--subroutine-path, [RS274NGC] SUBROUTINE_PATH)",
+                                    label, file, where));
+  }
+  // Read the file up to its "o<name> sub" line, note where the body starts, and come back.
+  const std::size_t back = input.tell();
+  const long back_line = diag.line() + 1;
+  const NormalizedLine caller = nl;
+  input.seek(input.add_file(path), 1);
+  std::string_view raw;
+  bool found = false;
+  while (!found && input.read_line(raw)) {
+    normalize_line(raw, diag.context(), nl);
+    if (nl.text.empty() || nl.text[0] != 'O') continue;
+    const OWord o = parse_oword(nl);
+    if (o.kind == OKind::sub && o.label == label) {
+      subs[label] = SubStart{input.tell(), diag.line() + 1};
+      found = true;
+    }
+  }
+  if (!found) fail(1, "o-word-call", fmt::format("{}: no {} sub in this file (called for {} call)", path, label, label));
+  input.seek(back, back_line);
+  nl = caller;
+  return subs.find(label);
+}
+
 LinuxcncFrontEnd::Frame* LinuxcncFrontEnd::find_frame(const std::string& label) {
   for (auto it = frames.rbegin(); it != frames.rend(); ++it)
     if (it->label == label) return &*it;
@@ -94,10 +154,8 @@ void LinuxcncFrontEnd::control_flow() {
       return;
     }
     case OKind::call: {
-      const auto it = subs.find(o.label);
-      if (it == subs.end())
-        fail(col, "o-word-call", fmt::format("{} call: subroutine not defined (define it with {} sub before the call)",
-                                             o.label, o.label));
+      auto it = subs.find(o.label);
+      if (it == subs.end()) it = load_subroutine_file(o.label, col);
       loop_guard(o.label);
       if (frames.size() >= 64) fail(col, "o-word-call", fmt::format("{} call: calls nested more than 64 deep", o.label));
       Frame f{OKind::call, o.label, input.tell(), diag.line() + 1};

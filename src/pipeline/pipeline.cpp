@@ -39,6 +39,7 @@ gcode::ReaderOptions Pipeline::reader_options() const {
     o.dialect = machine_.dialect;
     o.dialect_reason = "the machine file's dialect";
   }
+  if (o.subroutine_path.empty()) o.subroutine_path = machine_.subroutine_path;
   return o;
 }
 

@@ -38,6 +38,10 @@ struct ReaderOptions {
   std::optional<Dialect> dialect;
   /// Why `dialect` was given, for messages and summaries (empty: "given").
   std::string dialect_reason;
+  /// Folders searched, in order, for a subroutine in a file of its own (LinuxCNC: `o<name> call`
+  /// of a subroutine the program does not define runs `name.ngc`, as LinuxCNC's
+  /// [RS274NGC] SUBROUTINE_PATH); empty: the program's own folder.
+  std::vector<std::string> subroutine_path;
 };
 
 /// Reads a program and hands out its blocks one by one.
