@@ -117,7 +117,12 @@ DialectChoice detect_dialect(std::string_view name, std::string_view text) {
   // LinuxCNC: O-word keywords, named parameters, its print comments.
   static const std::regex linuxcnc_re(
       R"(^\s*(N\d+\s*)?O\s*(<[^>]*>|\d+)\s*(SUB|ENDSUB|CALL|RETURN|IF|ELSEIF|ELSE|ENDIF|WHILE|ENDWHILE|DO|REPEAT|ENDREPEAT|BREAK|CONTINUE)\b|#<)");
-  static const std::regex linuxcnc_comment_re(R"(^\((DEBUG|MSG|PRINT|LOGOPEN|PROBEOPEN),)");
+  // (MSG, is Mach3's too: not a mark.
+  static const std::regex linuxcnc_comment_re(R"(^\((DEBUG|PRINT|LOGOPEN|PROBEOPEN),)");
+  // After G80, axis words without a motion code: a Fanuc keeps G0 / G1 (LinuxCNC refuses them).
+  static const std::regex g80_re(R"((^|[^0-9.])G0*80(?![0-9.]))");
+  static const std::regex group01_re(R"((^|[^0-9.])G0*[0-3](?![0-9.]))");
+  static const std::regex axis_words_re(R"(^\s*(N\d+\s*)?[XYZ]\s*[-+.0-9])");
   static const std::regex grbl_re(R"(^\s*\$(\d+\s*=|[HXJCGNI#$]))");
   // Fanuc's family: program numbers, Macro B control flow, subprogram and macro calls.
   static const std::regex program_number_re(R"(^\s*%?\s*([O:]\d+))");
@@ -136,6 +141,7 @@ DialectChoice detect_dialect(std::string_view name, std::string_view text) {
 
   std::string code, comments;
   long line = 0;
+  bool after_g80 = false;  // a G80 and no motion code since
   std::size_t at = 0;
   while (at < text.size() && line < tolerances::gcode_dialect_detection_lines) {
     std::size_t end = text.find('\n', at);
@@ -174,6 +180,13 @@ DialectChoice detect_dialect(std::string_view name, std::string_view text) {
         what.erase(0, what.find_first_not_of(" \t0123456789N"));
         note(fanuc_syntax, Dialect::fanuc, fmt::format("'{}' on line {}", what.substr(0, 24), line));
       }
+    }
+    if (std::regex_search(code, g80_re)) after_g80 = true;
+    else if (std::regex_search(code, group01_re)) after_g80 = false;
+    else if (after_g80 && std::regex_search(code, axis_words_re)) {
+      note(fanuc_syntax, Dialect::fanuc,
+           fmt::format("axis words without a motion code after G80 on line {} (a Fanuc keeps G0 / G1)", line));
+      after_g80 = false;
     }
     std::string word;
     if (auto d = named_control(comments, word)) {
