@@ -51,8 +51,9 @@ void Executor::arc(bool clockwise, const Vec3& to, int col) {
   if (has_ijk) {
     const double i1 = w->has(offset_letter[pa.a1]) ? w->get(offset_letter[pa.a1]) * scale() : 0.0;
     const double i2 = w->has(offset_letter[pa.a2]) ? w->get(offset_letter[pa.a2]) * scale() : 0.0;
-    if (modal.arc_distance == DistanceMode::incremental) centre = s_p + i1 * e_a1 + i2 * e_a2;
-    else centre = i1 * e_a1 + i2 * e_a2;
+    const bool abs1 = w->absolute(offset_letter[pa.a1], modal.arc_distance == DistanceMode::absolute);
+    const bool abs2 = w->absolute(offset_letter[pa.a2], modal.arc_distance == DistanceMode::absolute);
+    centre = (abs1 ? i1 : s_p.dot(e_a1) + i1) * e_a1 + (abs2 ? i2 : s_p.dot(e_a2) + i2) * e_a2;
     if (has_r) {
       const double r_ijk = (s_p - centre).norm();
       const double r = std::abs(w->get('R') * scale());
@@ -117,11 +118,16 @@ void Executor::arc(bool clockwise, const Vec3& to, int col) {
   mf.e1 = rot * f.e1;
   mf.e2 = rot * f.e2;
   mf.normal = rot * f.normal;
+  double machine_rise = rise;
+  if (rot.determinant() < 0.0) {  // a mirrored frame: the machine's arc turns the other way round
+    mf.normal = mf.e1.cross(mf.e2);
+    machine_rise = -rise;
+  }
   Block b = make_block(std::abs(rise) > 0.0 ? BlockType::helix : BlockType::arc, col);
   b.start = to_machine(pos);
   b.end = to_machine(to);
   b.feed = feed;
-  b.geometry.emplace<HelixArc>(at(col, word, [&] { return HelixArc(mf, r_start, sweep, rise, r_end - r_start); }));
+  b.geometry.emplace<HelixArc>(at(col, word, [&] { return HelixArc(mf, r_start, sweep, machine_rise, r_end - r_start); }));
   emit(std::move(b));
   pos = to;
 }

@@ -15,6 +15,10 @@ void Executor::execute(const Words& words) {
   if (spline != Spline::none && continue_spline()) return;
   if (spline == Spline::g62) finish_g62();
   check_circle_end_block();
+  if (w->frame_op != FrameOp::none) {
+    programmable_frame();
+    return;
+  }
 
   const BlockCodes codes = classify_codes(*w, diag);
   check_words_allowed(codes);

@@ -141,7 +141,7 @@ private:
   SourceLocation location(int column) const {
     return SourceLocation{diag.name(), diag.line(), column > 0 ? column : 1, w->n_number};
   }
-  Eigen::Matrix3d rotation() const { return frames.rotation(modal.work_offset); }
+  Eigen::Matrix3d rotation() const { return frames.linear(modal.work_offset); }
   Vec3 to_machine(const Vec3& p) const { return frames.to_machine(p, modal.work_offset); }
   Vec3 to_program(const Vec3& m) const { return frames.to_program(m, modal.work_offset); }
   Block make_block(BlockType type, int column) const {
@@ -178,7 +178,7 @@ private:
     for (int a = 0; a < 3; ++a)
       if (w->has(letters[a])) {
         const double v = w->get(letters[a]) * scale();
-        t[a] = modal.distance == DistanceMode::absolute ? v : pos[a] + v;
+        t[a] = w->absolute(letters[a], modal.distance == DistanceMode::absolute) ? v : pos[a] + v;
       }
     return t;
   }
@@ -294,6 +294,9 @@ private:
 
   // ---- canned cycles G73, G81, G82, G83 (XY plane), expanded into moves
   void cycle(int motion, int col);
+
+  // ---- the programmable frame (programmable_frame.cpp): a block of a FrameOp alone
+  void programmable_frame();
 };
 
 }  // namespace kontur::gcode::detail
