@@ -253,6 +253,39 @@ TEST(GcodeSinumerik, AMirroredArcTurnsTheOtherWay) {
   EXPECT_LT(a.frame().normal.z(), 0.0);  // G3 mirrored in X: clockwise in the machine
 }
 
+TEST(GcodeSinumerik, PolarCoordinatesAboutThePole) {
+  const auto b = read(
+      "G17 G90\nG111 X10 Y10\n"
+      "G1 F100 AP=90 RP=5\n"
+      "AP=180\n"   // RP stays 5 (the position's)
+      "G3 AP=270\n"  // an arc about the pole
+      "G110 X5\n"  // the pole 5 to the right of the position (10, 5)
+      "G1 RP=1 AP=0 Z-1\n"
+      "M30\n");
+  ASSERT_EQ(b.size(), 4u);
+  expect_point(b[0].end, 10, 15, 0);
+  expect_point(b[1].end, 5, 10, 0);
+  ASSERT_EQ(b[2].type, BlockType::arc);
+  expect_point(b[2].end, 10, 5, 0);
+  expect_point(std::get<HelixArc>(b[2].geometry).frame().centre, 10, 10, 0);
+  EXPECT_NEAR(std::get<HelixArc>(b[2].geometry).sweep_rad(), std::numbers::pi / 2, 1e-12);
+  expect_point(b[3].end, 16, 5, -1);
+}
+
+TEST(GcodeSinumerik, CtArcsAreTangentToThePreviousMove) {
+  const auto b = read("G17 G1 F100 X0 Y0\nX10\nCT X20 Y10\nX30 Y20\nM30\n");
+  ASSERT_EQ(b.size(), 4u);
+  const auto& a1 = std::get<HelixArc>(b[2].geometry);
+  expect_point(a1.frame().centre, 10, 10, 0);
+  EXPECT_GT(a1.frame().normal.z(), 0.0);  // counter-clockwise, leaving along +X
+  const auto& a2 = std::get<HelixArc>(b[3].geometry);  // CT is modal
+  expect_point(a2.frame().centre, 30, 10, 0);
+  EXPECT_LT(a2.frame().normal.z(), 0.0);
+  EXPECT_EQ(error_of("CT X5 Y5\nM30\n"),
+            "s.mpf:1:1: CT: no direction to be tangent to (a tangential arc needs a move before it that is not along "
+            "the plane's normal)");
+}
+
 TEST(GcodeSinumerik, Cycle81And82ExpandIntoTheirMoves) {
   const auto b = read("G17 G90 G0 X10 Y20 Z50 F200\nCYCLE82(40,0,2,-15,,1.5)\nG1 X11\nM30\n");
   ASSERT_EQ(b.size(), 6u);

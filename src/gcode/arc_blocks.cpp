@@ -26,7 +26,8 @@ void Executor::arc(bool clockwise, const Vec3& to, int col) {
                      offset_letter[pa.a1], offset_letter[pa.a2]));
   const bool has_ijk = w->has(offset_letter[pa.a1]) || w->has(offset_letter[pa.a2]);
   const bool has_r = w->has('R');
-  if (!has_ijk && !has_r)
+  const bool polar_centre = !has_ijk && !has_r && w->polar != 0;  // Sinumerik: AP= / RP= about the pole
+  if (!has_ijk && !has_r && !polar_centre)
     fail(col, "arc-centre-missing",
          fmt::format("{}: {} {} (centre) or R (radius) missing", word, offset_letter[pa.a1], offset_letter[pa.a2]));
   int turns = 1;
@@ -48,7 +49,9 @@ void Executor::arc(bool clockwise, const Vec3& to, int col) {
     return std::min(std::max(tol_abs, tolerances::gcode_arc_radius_relative * radius),
                     tolerances::gcode_arc_radius_relative_cap * tol_abs);
   };
-  if (has_ijk) {
+  if (polar_centre) {
+    centre = in_plane(pole);
+  } else if (has_ijk) {
     const double i1 = w->has(offset_letter[pa.a1]) ? w->get(offset_letter[pa.a1]) * scale() : 0.0;
     const double i2 = w->has(offset_letter[pa.a2]) ? w->get(offset_letter[pa.a2]) * scale() : 0.0;
     const bool abs1 = w->absolute(offset_letter[pa.a1], modal.arc_distance == DistanceMode::absolute);

@@ -8,8 +8,9 @@
 
 namespace kontur::gcode::detail {
 
-/// Block keywords of the Sinumerik style (and Kontur's conic).
-enum class Keyword : std::uint8_t { none, cip, conic };
+/// Block keywords of the Sinumerik style (and Kontur's conic); ct: Sinumerik's arc tangent to the
+/// previous move.
+enum class Keyword : std::uint8_t { none, cip, conic, ct };
 
 /// A programmable frame instruction (Sinumerik TRANS / ROT / SCALE / MIRROR and their additive
 /// A... forms): the block holds nothing else; its X Y Z give the offsets, angles, factors or the
@@ -40,6 +41,13 @@ struct Words {
   std::uint32_t incremental_words = 0;
   FrameOp frame_op = FrameOp::none;
   int frame_column = 0;
+  // Polar coordinates (Sinumerik AP= angle [deg], RP= radius) in the plane about the pole, and the
+  // pole's definition (G110 relative to the position, G111 absolute, G112 relative to the pole:
+  // pole_g 110 / 111 / 112, with X Y Z as the pole).
+  std::uint8_t polar = 0;  // bit 0: AP given, bit 1: RP given
+  double polar_angle = 0.0, polar_radius = 0.0;
+  int polar_column = 0;
+  int pole_g = 0;
   double frame_rpl = 0.0;
   bool frame_has_rpl = false;
 
@@ -55,6 +63,9 @@ struct Words {
     incremental_words = 0;
     frame_op = FrameOp::none;
     frame_has_rpl = false;
+    polar = 0;
+    polar_column = 0;
+    pole_g = 0;
   }
   [[nodiscard]] bool has(char letter) const noexcept { return (present >> (letter - 'A')) & 1u; }
   [[nodiscard]] double get(char letter) const noexcept { return value[static_cast<std::size_t>(letter - 'A')]; }
@@ -64,7 +75,7 @@ struct Words {
   }
   [[nodiscard]] bool empty() const noexcept {
     return present == 0 && g_count == 0 && m_count == 0 && indexed_present == 0 && keyword == Keyword::none &&
-           frame_op == FrameOp::none;
+           frame_op == FrameOp::none && polar == 0 && pole_g == 0;
   }
   /// The word `letter` is absolute (AC) or incremental (IC) whatever the modal distance mode
   /// (`modal_absolute`) says.

@@ -117,7 +117,7 @@ void SinumerikFrontEnd::expand_cycle(std::string_view name, const std::vector<st
     }
   }
   move(0, rtp);
-  if (motion_g >= 0) {  // the motion mode of the caller again
+  if (motion_g >= 0 && motion_g <= 30) {  // the motion mode of the caller again (not after CIP / CT)
     Words w;
     w.add_g(motion_g, col);
     w.first_column = col;

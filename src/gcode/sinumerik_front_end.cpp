@@ -52,12 +52,6 @@ constexpr Refusal refusals[] = {
     {"CSPLINE", "cubic splines (CSPLINE)"},
     {"BSPLINE", "B splines (BSPLINE)"},
     {"POLY", "polynomial interpolation (POLY)"},
-    {"CT", "tangential arcs (CT)"},
-    {"G110", "polar coordinates (G110 pole)"},
-    {"G111", "polar coordinates (G111 pole)"},
-    {"G112", "polar coordinates (G112 pole)"},
-    {"AP", "polar coordinates (AP= angle)"},
-    {"RP", "polar coordinates (RP= radius)"},
     {"OFFN", "contour offset OFFN (cutter compensation)"},
     {"CASE", "CASE branches"},
     {"SPLINEPATH", "spline groups (SPLINEPATH)"},
@@ -454,7 +448,7 @@ void SinumerikFrontEnd::read_words(Words& words) {
 bool SinumerikFrontEnd::keyword_word(std::string_view name, int col, Words& words) {
   const std::string n(name);
   // addresses of several letters, with '='
-  if (cur.peek() == '=' && (name == "CR" || name == "TURN" || name == "ADIS" || name == "ADISPOS" || name == "RPL" ||
+  if (cur.peek() == '=' && (name == "CR" || name == "TURN" || name == "AP" || name == "RP" || name == "ADIS" || name == "ADISPOS" || name == "RPL" ||
                             (name.size() == 2 && (name[0] == 'I' || name[0] == 'J' || name[0] == 'K') && name[1] >= '1' &&
                              name[1] <= '3'))) {
     ++cur.p;
@@ -471,6 +465,12 @@ bool SinumerikFrontEnd::keyword_word(std::string_view name, int col, Words& word
         path_tolerance = v;
         adis_given = true;
       }
+    } else if (name == "AP" || name == "RP") {
+      const unsigned bit = name == "AP" ? 1u : 2u;
+      if (words.polar & bit) fail(col, "word-twice", fmt::format("{}=: given twice in the block", name));
+      words.polar = static_cast<std::uint8_t>(words.polar | bit);
+      (name == "AP" ? words.polar_angle : words.polar_radius) = v;
+      if (words.polar_column == 0) words.polar_column = col;
     } else if (name == "RPL") {
       words.frame_rpl = v;
       words.frame_has_rpl = true;
@@ -485,10 +485,11 @@ bool SinumerikFrontEnd::keyword_word(std::string_view name, int col, Words& word
     add_g(words, 530, col);
     return true;
   }
-  if (name == "CIP") {
-    if (words.keyword != Keyword::none) fail(col, "word-twice", "CIP: a second CIP in the block");
-    words.keyword = Keyword::cip;
+  if (name == "CIP" || name == "CT") {
+    if (words.keyword != Keyword::none) fail(col, "word-twice", fmt::format("{}: a second CIP or CT in the block", name));
+    words.keyword = name == "CIP" ? Keyword::cip : Keyword::ct;
     words.keyword_column = col;
+    motion_g = name == "CIP" ? 10000 : 10002;  // modal like G2 / G3
     return true;
   }
   static const std::pair<const char*, FrameOp> frame_ops[] = {
@@ -578,6 +579,11 @@ void SinumerikFrontEnd::address(char letter, int col, Words& words) {
           add_g(words, g * 10, col);
           return;
         case 53: add_g(words, 530, col); return;
+        case 110: case 111: case 112:
+          if (words.pole_g != 0) fail(col, "modal-group", fmt::format("G{}: a second pole definition in the block", g));
+          words.pole_g = g;
+          words.polar_column = col;
+          return;
         case 54: case 55: case 56: case 57: add_g(words, g * 10, col); return;
         case 500:
           warn_once("G500", col, "G500: no settable frame; Kontur's work offsets are all zero, read as G54");
@@ -595,7 +601,6 @@ void SinumerikFrontEnd::address(char letter, int col, Words& words) {
           return;
         case 33: case 34: case 35: case 331: case 332: case 63: fail(col, "unsupported", refusal("thread cutting and tapping (spindle-synchronised motion)"));
         case 74: case 75: fail(col, "unsupported", refusal("reference point approach (G74 / G75: the machine's reference points are not known)"));
-        case 110: case 111: case 112: fail(col, "unsupported", refusal("polar coordinates (G110 / G111 / G112 pole)"));
         case 58: case 59: fail(col, "unsupported", refusal("axial programmable offsets (G58 / G59)"));
         case 140: case 141: case 142: case 143: case 147: case 148: case 247: case 248: case 347: case 348: case 340: case 341:
           fail(col, "unsupported", refusal("soft approach and retract (G14x / G24x / G34x)"));
