@@ -360,13 +360,15 @@ TEST(GcodeSinumerik, ASubprogramOfItsOwnFileBesideTheProgramIsCalled) {
     spf << "%_N_WARM_SPF\n; a warm-up\nPROC WARM(REAL DEPTH, INT TIMES)\nDEF INT I\nFOR I=1 TO TIMES\n"
            "G1 SUPA Z=-DEPTH*I F300\nENDFOR\nRET\n";
     std::ofstream mpf(dir / "MAIN.MPF");
-    mpf << "EXTERN WARM(REAL, INT)\nG71 G90 G0 X1 Y2 Z0\nWARM(2, 3)\nWARM(1, 1)\nG0 X5\nM30\n";
+    mpf << "EXTERN WARM(REAL, INT)\nG71 G90 G0 X1 Y2 Z0\nWARM(2, 3)\nWARM(1, 1)\nG0 X5\nLAST\nG0 Y0\nM30\n";
+    std::ofstream last(dir / "LAST.SPF");
+    last << "G1 Y7 M17\n";
   }
   Reader reader((dir / "MAIN.MPF").string(), sinumerik());
   std::vector<Block> b;
   Block blk;
   while (reader.next(blk)) b.push_back(blk);
-  ASSERT_EQ(b.size(), 1u + 3u + 1u + 1u);
+  ASSERT_EQ(b.size(), 1u + 3u + 1u + 1u + 2u);
   EXPECT_EQ(b[3].end.z(), -6.0);
   EXPECT_EQ(*b[3].location.file, (dir / "WARM.SPF").string());
   EXPECT_EQ(b[3].location.line, 6);
@@ -374,6 +376,11 @@ TEST(GcodeSinumerik, ASubprogramOfItsOwnFileBesideTheProgramIsCalled) {
   expect_point(b[5].end, 5, 2, -1);
   EXPECT_EQ(*b[5].location.file, (dir / "MAIN.MPF").string());
   EXPECT_EQ(b[5].location.line, 5);
+  EXPECT_EQ(*b[6].location.file, (dir / "LAST.SPF").string());  // the block with M17 is the subprogram's
+  EXPECT_EQ(b[6].location.line, 1);
+  EXPECT_EQ(*b[7].location.file, (dir / "MAIN.MPF").string());
+  EXPECT_EQ(b[7].location.line, 7);
+  expect_point(b[7].end, 5, 0, -1);
 }
 
 TEST(GcodeSinumerik, DwellsPathModesAndNoOps) {

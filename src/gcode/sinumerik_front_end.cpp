@@ -153,6 +153,11 @@ SinumerikFrontEnd::Head SinumerikFrontEnd::read_head(Cursor& c, bool record) {
 }
 
 LineOutcome SinumerikFrontEnd::read_line(std::string_view raw, Words& words) {
+  if (deferred_return) {  // M17 ended a subprogram file's block: the block has run in its file
+    deferred_return = false;
+    end_of_sub(1);
+    if (!external) diag.set_line(main_line + 1);  // `raw` is the main program's line after the call
+  }
   if (!external) {
     const LineOutcome r = read_program_line(raw, words);
     if (external) external_line = diag.line();  // a subprogram file was opened
@@ -388,7 +393,10 @@ LineOutcome SinumerikFrontEnd::block(Words& words) {
     const auto args = cycle_arguments(c, name);
     expand_cycle(name, args, mcall_column);
   }
-  if (sub_end) end_of_sub(block_col);
+  if (sub_end) {
+    if (external && frames.back().kind == FKind::call && frames.back().external) deferred_return = true;
+    else end_of_sub(block_col);
+  }
   if (words.empty() && !pending.empty()) {
     words = pending.front();
     pending.pop_front();

@@ -103,6 +103,7 @@ private:
   std::string main_name;                   // the program's name, for messages after the return
   long external_line = 0;                  // the line of the subprogram file last read
   long main_line = 0;                      // the main program's line of the call
+  bool deferred_return = false;            // M17 in a block of a subprogram file: return after it ran
   std::map<std::string, Position, std::less<>> saved_labels;  // of the main program, during the call
   // The input being read: the main program's, or the file of the subprogram being run.
   ProgramInput& in() noexcept { return external ? *external : main_input; }
