@@ -73,6 +73,14 @@ TEST(GcodeSinumerik, RParametersDefVariablesAndArithmetic) {
   expect_point(b[3].end, 1.5, 2, 5);
 }
 
+TEST(GcodeSinumerik, AddressesWithoutSpaces) {
+  const auto b = read("N10G1X10Y-5.5F100\nN20G91X.5Z=-1\nM30\n");
+  ASSERT_EQ(b.size(), 2u);
+  expect_point(b[0].end, 10, -5.5, 0);
+  EXPECT_EQ(b[0].location.n_number, 10);
+  expect_point(b[1].end, 10.5, -5.5, -1);
+}
+
 TEST(GcodeSinumerik, ComparisonsHaveTheLowestPriorityAsOnTheControl) {
   const auto b = read(
       "R1=1 R2=2\n"

@@ -132,7 +132,8 @@ SinumerikFrontEnd::Head SinumerikFrontEnd::read_head(Cursor& c, bool record) {
         ++digits;
         ++q;
       }
-      if (q < c.t.size() && (is_ident_start(c.t[q]) || c.t[q] == '=')) break;  // N1A ..., not a number
+      // (a name starts with two letters or '_' on a Sinumerik: N10G0 is N10 and G0)
+      if (q < c.t.size() && (c.t[q] == '=' || c.t[q] == '[')) break;
       if (h.n >= 0) diag.fail(c.col(), "n-word", "a second block number in the block");
       h.n = n;
       c.p = q;
@@ -432,10 +433,15 @@ void SinumerikFrontEnd::read_words(Words& words) {
     }
     if (r_param) fail(col, "syntax", fmt::format("{}: an R parameter in a block needs '=' (R1=5)", name));
     if (keyword_word(name, col, words)) continue;
+    // An address: a letter and its value. Names start with two letters or '_' on a Sinumerik, so
+    // that a letter and a digit are an address also without spaces (G1X10Y5, N10G0).
     const char letter = name[0];
-    const bool address_form = name.size() == 1 || all_digits(std::string_view(name).substr(1));
+    const bool address_form = name.size() == 1 || is_digit(name[1]);
     if (address_form && letter == 'L' && name.size() > 1) {  // L100: a subprogram call
-      call(name, cur, col);
+      std::size_t digits = 1;
+      while (digits < name.size() && is_digit(name[digits])) ++digits;
+      cur.p = start + digits;
+      call(name.substr(0, digits), cur, col);
       continue;
     }
     if (address_form && std::strchr("XYZIJKFSTDHMGPABCUVW", letter)) {
