@@ -246,9 +246,28 @@ TEST(GcodeSinumerik, TransAndRotGiveExactMachineCoordinates) {
   expect_point(b[4].end, 0, 10, 0);
   expect_point(b[5].end, 1, 2, 0);
   expect_point(b[6].end, -3, 4, 0);
-  EXPECT_EQ(error_of("SCALE X2 Y2\nM30\n"),
-            "s.mpf:1:1: SCALE: a scaling frame is not supported by Kontur (dialect sinumerik): its arcs would not be circles "
-            "in the machine; scale the program instead");
+}
+
+TEST(GcodeSinumerik, ScaleMakesArcsLargerAndRefusesUnevenPlanes) {
+  const auto b = read(
+      "G17 G90 G0 X0 Y0\n"
+      "SCALE X2 Y2\n"
+      "ATRANS X5\n"  // scaled: 10 in the machine
+      "G1 F100 X10 Y0\n"
+      "G2 X20 Y0 CR=5\n"
+      "SCALE\n"
+      "G1 X1 Y1\n"
+      "M30\n");
+  ASSERT_EQ(b.size(), 4u);
+  expect_point(b[1].end, 30, 0, 0);
+  ASSERT_EQ(b[2].type, BlockType::arc);
+  expect_point(b[2].end, 50, 0, 0);
+  expect_point(std::get<HelixArc>(b[2].geometry).frame().centre, 40, 0, 0);
+  EXPECT_NEAR(std::get<HelixArc>(b[2].geometry).radius_mm(), 10.0, 1e-12);
+  expect_point(b[3].end, 1, 1, 0);
+  EXPECT_EQ(error_of("G1 F100 X10\nSCALE X2 Y3\nG2 X20 CR=10\nM30\n"),
+            "s.mpf:3:1: G2: the programmable frame scales the arc's plane unevenly: the arc would not be a circle in the "
+            "machine");
 }
 
 TEST(GcodeSinumerik, AMirroredArcTurnsTheOtherWay) {

@@ -1,7 +1,8 @@
 // The programmable frame (Sinumerik TRANS / ATRANS, ROT / AROT, MIRROR / AMIRROR): between the work
 // offset and the program coordinates, p_work = A p + t. The absolute forms replace the whole frame
-// (an instruction without axes clears it), the additive forms append to it in its own coordinates.
-// SCALE would make arcs elliptic in the machine (the geometry is rigid): refused. Also Sinumerik's
+// (an instruction without axes clears it), the additive forms append to it in its own coordinates
+// (an ATRANS after a SCALE is scaled, as on the control). An arc in a plane the frame scales unevenly
+// would be an ellipse: arc() refuses it. Also Sinumerik's
 // polar coordinates (the pole of G110 / G111 / G112, targets from AP= / RP=) and CT, the arc
 // tangent to the previous move.
 #include "executor.hpp"
@@ -15,14 +16,6 @@ void Executor::programmable_frame() {
   const FrameOp op = w->frame_op;
   const std::string word = names[static_cast<int>(op)];
   const int col = w->frame_column > 0 ? w->frame_column : block_column();
-  if (op == FrameOp::scale || op == FrameOp::ascale) {
-    const bool any = has_axes();
-    if (op == FrameOp::scale && !any) return;  // SCALE alone: no scaling, as without it
-    fail(col, "unsupported",
-         fmt::format("{}: a scaling frame is not supported by Kontur (dialect sinumerik): its arcs would not be circles "
-                     "in the machine; scale the program instead",
-                     word));
-  }
   for (char c = 'A'; c <= 'Z'; ++c)
     if (w->has(c) && c != 'X' && c != 'Y' && c != 'Z')
       fail(w->col(c), "frame-words", fmt::format("{}: {} is not allowed in a frame block (X Y Z{} only)", word, c,
@@ -71,6 +64,26 @@ void Executor::programmable_frame() {
       }
       break;
     }
+    case FrameOp::scale:
+    case FrameOp::ascale: {  // factors per axis (1 where not given); an arc needs equal ones in its plane
+      if (w->frame_has_rpl) fail(col, "frame-words", fmt::format("{}: RPL= belongs to ROT / AROT", word));
+      Eigen::Matrix3d m = Eigen::Matrix3d::Identity();
+      for (int axis = 0; axis < 3; ++axis) {
+        const char letter = static_cast<char>('X' + axis);
+        if (!w->has(letter)) continue;
+        const double f = w->get(letter);
+        if (!(std::abs(f) > 1e-9) || std::abs(f) > 1e6)
+          fail(w->col(letter), "frame-words", fmt::format("{} {}{}: a scale factor must not be 0", word, letter, num(f)));
+        m(axis, axis) = f;
+      }
+      if (op == FrameOp::scale) {
+        a = m;
+        t.setZero();
+      } else {
+        a = a * m;
+      }
+      break;
+    }
     case FrameOp::mirror:
     case FrameOp::amirror: {
       if (w->frame_has_rpl) fail(col, "frame-words", fmt::format("{}: RPL= belongs to ROT / AROT", word));
@@ -87,7 +100,7 @@ void Executor::programmable_frame() {
     }
     default: fail(col, "internal", "frame operation not handled");
   }
-  if ((op == FrameOp::trans || op == FrameOp::rot || op == FrameOp::mirror) && !any) {
+  if ((op == FrameOp::trans || op == FrameOp::rot || op == FrameOp::mirror || op == FrameOp::scale) && !any) {
     a.setIdentity();  // TRANS / ROT / MIRROR alone: no programmable frame
     t.setZero();
   }
@@ -141,7 +154,7 @@ Vec3 Executor::polar_target(const Vec3& t) const {
 void Executor::tangent_arc(const Vec3& to, int col) {
   const PlaneAxes pa = plane_axes(modal.plane);
   const Vec3 n = unit(pa.n);
-  Vec3 t = rotation().transpose() * end_tangent;  // in program coordinates
+  Vec3 t = rotation().inverse() * end_tangent;  // in program coordinates
   t -= t.dot(n) * n;
   if (!(t.norm() > 1e-9))
     fail(col, "ct-tangent",
