@@ -26,7 +26,8 @@ void Executor::arc(bool clockwise, const Vec3& to, int col) {
                      offset_letter[pa.a1], offset_letter[pa.a2]));
   const bool has_ijk = w->has(offset_letter[pa.a1]) || w->has(offset_letter[pa.a2]);
   const bool has_r = w->has('R');
-  if (!has_ijk && !has_r)
+  const bool polar_centre = !has_ijk && !has_r && w->polar != 0;  // Sinumerik: AP= / RP= about the pole
+  if (!has_ijk && !has_r && !polar_centre)
     fail(col, "arc-centre-missing",
          fmt::format("{}: {} {} (centre) or R (radius) missing", word, offset_letter[pa.a1], offset_letter[pa.a2]));
   int turns = 1;
@@ -48,11 +49,14 @@ void Executor::arc(bool clockwise, const Vec3& to, int col) {
     return std::min(std::max(tol_abs, tolerances::gcode_arc_radius_relative * radius),
                     tolerances::gcode_arc_radius_relative_cap * tol_abs);
   };
-  if (has_ijk) {
+  if (polar_centre) {
+    centre = in_plane(pole);
+  } else if (has_ijk) {
     const double i1 = w->has(offset_letter[pa.a1]) ? w->get(offset_letter[pa.a1]) * scale() : 0.0;
     const double i2 = w->has(offset_letter[pa.a2]) ? w->get(offset_letter[pa.a2]) * scale() : 0.0;
-    if (modal.arc_distance == DistanceMode::incremental) centre = s_p + i1 * e_a1 + i2 * e_a2;
-    else centre = i1 * e_a1 + i2 * e_a2;
+    const bool abs1 = w->absolute(offset_letter[pa.a1], modal.arc_distance == DistanceMode::absolute);
+    const bool abs2 = w->absolute(offset_letter[pa.a2], modal.arc_distance == DistanceMode::absolute);
+    centre = (abs1 ? i1 : s_p.dot(e_a1) + i1) * e_a1 + (abs2 ? i2 : s_p.dot(e_a2) + i2) * e_a2;
     if (has_r) {
       const double r_ijk = (s_p - centre).norm();
       const double r = std::abs(w->get('R') * scale());
@@ -110,18 +114,29 @@ void Executor::arc(bool clockwise, const Vec3& to, int col) {
   if (e_p == s_p || angle <= 0.0) angle = 2.0 * pi;
   const double sweep = angle + 2.0 * pi * (turns - 1);
   const double rise = (to - pos).dot(f.normal);
-  // to machine coordinates (rigid: rotation about Z and translation)
-  const Eigen::Matrix3d rot = rotation();
+  // to machine coordinates: rotation about Z and translation, and a programmable frame (Sinumerik
+  // ROT, MIRROR, SCALE) that maps the arc's plane by a similarity (a mirror turns it the other way
+  // round, a scale k makes its radius k times)
+  const Eigen::Matrix3d lin = rotation();
+  const Vec3 u1 = lin * f.e1, u2 = lin * f.e2, un = lin * f.normal;
+  const double k = u1.norm();
+  if (std::abs(u2.norm() - k) > 1e-9 * k || std::abs(u1.dot(u2)) > 1e-9 * k * k ||
+      un.cross(u1.cross(u2)).norm() > 1e-9 * un.norm() * k * k)
+    fail(col, "arc-frame",
+         fmt::format("{}: the programmable frame scales the arc's plane unevenly: the arc would not be a circle in "
+                     "the machine",
+                     word));
   CircleFrame mf;
   mf.centre = to_machine(f.centre);
-  mf.e1 = rot * f.e1;
-  mf.e2 = rot * f.e2;
-  mf.normal = rot * f.normal;
+  mf.e1 = u1 / k;
+  mf.e2 = u2 / k;
+  mf.normal = mf.e1.cross(mf.e2);
+  const double machine_rise = rise * un.dot(mf.normal);
   Block b = make_block(std::abs(rise) > 0.0 ? BlockType::helix : BlockType::arc, col);
   b.start = to_machine(pos);
   b.end = to_machine(to);
   b.feed = feed;
-  b.geometry.emplace<HelixArc>(at(col, word, [&] { return HelixArc(mf, r_start, sweep, rise, r_end - r_start); }));
+  b.geometry.emplace<HelixArc>(at(col, word, [&] { return HelixArc(mf, r_start * k, sweep, machine_rise, (r_end - r_start) * k); }));
   emit(std::move(b));
   pos = to;
 }

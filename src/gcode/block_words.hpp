@@ -8,8 +8,14 @@
 
 namespace kontur::gcode::detail {
 
-/// Block keywords of the Sinumerik style (and Kontur's conic).
-enum class Keyword : std::uint8_t { none, cip, conic };
+/// Block keywords of the Sinumerik style (and Kontur's conic); ct: Sinumerik's arc tangent to the
+/// previous move.
+enum class Keyword : std::uint8_t { none, cip, conic, ct };
+
+/// A programmable frame instruction (Sinumerik TRANS / ROT / SCALE / MIRROR and their additive
+/// A... forms): the block holds nothing else; its X Y Z give the offsets, angles, factors or the
+/// mirrored axes, and frame_rpl the rotation in the plane (RPL=).
+enum class FrameOp : std::uint8_t { none, trans, atrans, rot, arot, scale, ascale, mirror, amirror };
 
 /// The words of one block.
 struct Words {
@@ -30,6 +36,20 @@ struct Words {
   int keyword_column = 0;
   long n_number = -1;
   int first_column = 0;  // raw column of the first word (0 if none)
+  // Per-word distance overrides (Sinumerik X=AC(..) / X=IC(..)): bit (letter - 'A').
+  std::uint32_t absolute_words = 0;
+  std::uint32_t incremental_words = 0;
+  FrameOp frame_op = FrameOp::none;
+  int frame_column = 0;
+  // Polar coordinates (Sinumerik AP= angle [deg], RP= radius) in the plane about the pole, and the
+  // pole's definition (G110 relative to the position, G111 absolute, G112 relative to the pole:
+  // pole_g 110 / 111 / 112, with X Y Z as the pole).
+  std::uint8_t polar = 0;  // bit 0: AP given, bit 1: RP given
+  double polar_angle = 0.0, polar_radius = 0.0;
+  int polar_column = 0;
+  int pole_g = 0;
+  double frame_rpl = 0.0;
+  bool frame_has_rpl = false;
 
   void clear() noexcept {
     present = 0;
@@ -39,6 +59,13 @@ struct Words {
     keyword = Keyword::none;
     n_number = -1;
     first_column = 0;
+    absolute_words = 0;
+    incremental_words = 0;
+    frame_op = FrameOp::none;
+    frame_has_rpl = false;
+    polar = 0;
+    polar_column = 0;
+    pole_g = 0;
   }
   [[nodiscard]] bool has(char letter) const noexcept { return (present >> (letter - 'A')) & 1u; }
   [[nodiscard]] double get(char letter) const noexcept { return value[static_cast<std::size_t>(letter - 'A')]; }
@@ -47,7 +74,16 @@ struct Words {
     return (indexed_present >> (3 * point + axis)) & 1u;
   }
   [[nodiscard]] bool empty() const noexcept {
-    return present == 0 && g_count == 0 && m_count == 0 && indexed_present == 0 && keyword == Keyword::none;
+    return present == 0 && g_count == 0 && m_count == 0 && indexed_present == 0 && keyword == Keyword::none &&
+           frame_op == FrameOp::none && polar == 0 && pole_g == 0;
+  }
+  /// The word `letter` is absolute (AC) or incremental (IC) whatever the modal distance mode
+  /// (`modal_absolute`) says.
+  [[nodiscard]] bool absolute(char letter, bool modal_absolute) const noexcept {
+    const std::uint32_t bit = 1u << (letter - 'A');
+    if (absolute_words & bit) return true;
+    if (incremental_words & bit) return false;
+    return modal_absolute;
   }
 
   // Builders for a dialect (and for tests that feed the executor directly).

@@ -1,8 +1,9 @@
 #pragma once
 // Internal: the coordinate frames between program and machine coordinates: nine work offsets
 // (G54 .. G59.3, set by G10 L2 / L20) with an XY rotation each (G10 L2 R), and the G92 offset
-// (with the copy G92.3 restores). machine = Rz(R) (program + G92) + work offset, as LinuxCNC.
-// Dialect-neutral; lengths in [mm].
+// (with the copy G92.3 restores), and the programmable frame of Sinumerik's TRANS / ROT / MIRROR
+// (A p + t, A invertible: rotations, mirrors, scales; identity elsewhere). machine = Rz(R) (A program + t + G92) + work
+// offset, as LinuxCNC without a programmable frame. Dialect-neutral; lengths in [mm].
 #include <kontur/geometry/curve.hpp>
 
 #include <Eigen/Geometry>
@@ -29,14 +30,27 @@ public:
     if (a != 0.0) r = Eigen::AngleAxisd(a, Vec3::UnitZ()).toRotationMatrix();
     return r;
   }
+  /// The linear part from program to machine directions in work system `system`: its XY rotation
+  /// after the programmable frame's (a mirror makes its determinant negative, a scale its columns longer).
+  [[nodiscard]] Eigen::Matrix3d linear(int system) const { return rotation(system) * frame_linear_; }
   /// Program point `p` in machine coordinates, in work system `system`.
   [[nodiscard]] Vec3 to_machine(const Vec3& p, int system) const {
-    return rotation(system) * (p + g92_) + offset_[index(system)];
+    return rotation(system) * (frame_linear_ * p + frame_translation_ + g92_) + offset_[index(system)];
   }
   /// Machine point `m` in program coordinates, in work system `system`.
   [[nodiscard]] Vec3 to_program(const Vec3& m, int system) const {
-    return rotation(system).transpose() * (m - offset_[index(system)]) - g92_;
+    return frame_inverse_ * (rotation(system).transpose() * (m - offset_[index(system)]) - g92_ - frame_translation_);
   }
+
+  // ---- the programmable frame (Sinumerik TRANS, ROT, MIRROR and ATRANS, AROT, AMIRROR)
+  /// Sets the programmable frame: program point p is A p + t in the work system (A invertible).
+  void set_programmable(const Eigen::Matrix3d& linear, const Vec3& translation) noexcept {
+    frame_linear_ = linear;
+    frame_inverse_ = linear.inverse();
+    frame_translation_ = translation;
+  }
+  [[nodiscard]] const Eigen::Matrix3d& programmable_linear() const noexcept { return frame_linear_; }
+  [[nodiscard]] const Vec3& programmable_translation() const noexcept { return frame_translation_; }
 
   // ---- G10 L2 / L20
   /// Sets the XY rotation [deg] of work system `system` (G10 L2 R).
@@ -48,7 +62,7 @@ public:
   [[nodiscard]] Vec3 offset_placing(const Vec3& m, const Vec3& p, int system) const {
     const double ang = rotation_deg_[index(system)] * pi / 180.0;
     const Eigen::Matrix3d rot = Eigen::AngleAxisd(ang, Vec3::UnitZ()).toRotationMatrix();
-    return m - rot * (p + g92_);
+    return m - rot * (frame_linear_ * p + frame_translation_ + g92_);
   }
 
   // ---- G92 family
@@ -72,6 +86,9 @@ private:
   std::array<double, system_count + 1> rotation_deg_{};
   Vec3 g92_ = Vec3::Zero();
   Vec3 g92_saved_ = Vec3::Zero();
+  Eigen::Matrix3d frame_linear_ = Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d frame_inverse_ = Eigen::Matrix3d::Identity();
+  Vec3 frame_translation_ = Vec3::Zero();
 };
 
 }  // namespace kontur::gcode::detail

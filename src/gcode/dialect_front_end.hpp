@@ -72,6 +72,12 @@ public:
   /// Reads the line `raw` (just read from the input, without its end of line): fills `words` and
   /// returns LineOutcome::words for a block, runs control flow or assignments otherwise.
   virtual LineOutcome read_line(std::string_view raw, Words& words) = 0;
+  /// A line that expands into several blocks (a Sinumerik drilling cycle) hands the blocks after
+  /// the first here, one per call, after the previous one ran; false when there is none left.
+  virtual bool pending_words(Words& words) {
+    (void)words;
+    return false;
+  }
   /// The input has ended: throws if control flow is left open (a sub, loop or if without its end).
   virtual void at_end_of_input() = 0;
   /// True if the program marked its own end (LinuxCNC: it started with '%'), so that a missing

@@ -2,6 +2,7 @@
 // the rules its executor follows.
 #include "dialect_front_end.hpp"
 #include "linuxcnc_front_end.hpp"
+#include "sinumerik_front_end.hpp"
 
 #include <fmt/format.h>
 
@@ -32,7 +33,7 @@ std::unique_ptr<DialectFrontEnd> make_front_end(Dialect dialect, const DialectSe
     case Dialect::haas:
     case Dialect::mitsubishi:
     case Dialect::mach3: return std::make_unique<LinuxcncFrontEnd>(services);
-    case Dialect::sinumerik: break;
+    case Dialect::sinumerik: return std::make_unique<SinumerikFrontEnd>(services);
   }
   throw InputError("dialect", fmt::format("{}: the {} dialect is not implemented yet", services.diagnostics.context().file,
                                           to_string(dialect)));

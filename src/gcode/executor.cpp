@@ -8,6 +8,10 @@ namespace kontur::gcode::detail {
 
 const Words Executor::no_words{};
 
+namespace {
+const char* keyword_name(Keyword k) { return k == Keyword::cip ? "CIP" : k == Keyword::ct ? "CT" : "CONIC"; }
+}  // namespace
+
 void Executor::execute(const Words& words) {
   w = &words;
   check_values();
@@ -15,6 +19,14 @@ void Executor::execute(const Words& words) {
   if (spline != Spline::none && continue_spline()) return;
   if (spline == Spline::g62) finish_g62();
   check_circle_end_block();
+  if (w->frame_op != FrameOp::none) {
+    programmable_frame();
+    return;
+  }
+  if (w->pole_g != 0) {
+    define_pole();
+    return;
+  }
 
   const BlockCodes codes = classify_codes(*w, diag);
   check_words_allowed(codes);
@@ -110,8 +122,7 @@ void Executor::check_words_allowed(const BlockCodes& codes) const {
   if (w->keyword != Keyword::none && motion_word >= 0)
     fail(w->keyword_column, "modal-group",
          fmt::format("{}: {} and {} in one block: both are motion commands",
-                     w->keyword == Keyword::cip ? "CIP" : "CONIC", g_name(motion_word),
-                     w->keyword == Keyword::cip ? "CIP" : "CONIC"));
+                     keyword_name(w->keyword), g_name(motion_word), keyword_name(w->keyword)));
   const bool nonmodal_uses_axes = nonmodal == 100 || nonmodal == 280 || nonmodal == 300 || nonmodal == 920;
   // Fanuc's "G0 G91 G28 Z0": the motion code only sets the mode, the axis words are G28's.
   if (nonmodal_uses_axes && (motion_word >= 0 && motion_word != motion_none) && !rules_.motion_code_beside_nonmodal)
@@ -258,6 +269,7 @@ void Executor::run_motion(const BlockCodes& codes, bool machine_coordinates) {
   if (motion_word == motion_none && rules_.g80_restores_motion && group01_motion >= 0) motion = group01_motion;
   if (w->keyword == Keyword::cip) motion = motion_cip;
   if (w->keyword == Keyword::conic) motion = motion_conic;
+  if (w->keyword == Keyword::ct) motion = motion_ct;
   const bool starts_motion = motion_word >= 0 || w->keyword != Keyword::none;
   const int motion_col =
       motion_word >= 0 ? codes.column(g_motion) : w->keyword != Keyword::none ? w->keyword_column : block_column();
@@ -326,6 +338,7 @@ void Executor::move(int motion, int col, bool machine_coordinates, int motion_wo
     case 62: start_g62(col, motion_word); return;
     case 24: case 34: circle_block(motion, col); return;
     case motion_cip: cip(to, col); return;
+    case motion_ct: tangent_arc(to, col); return;
     case motion_conic: conic(to, col); return;
     case 730: case 810: case 820: case 830: cycle(motion, col); return;
     default: break;

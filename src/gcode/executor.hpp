@@ -141,7 +141,7 @@ private:
   SourceLocation location(int column) const {
     return SourceLocation{diag.name(), diag.line(), column > 0 ? column : 1, w->n_number};
   }
-  Eigen::Matrix3d rotation() const { return frames.rotation(modal.work_offset); }
+  Eigen::Matrix3d rotation() const { return frames.linear(modal.work_offset); }
   Vec3 to_machine(const Vec3& p) const { return frames.to_machine(p, modal.work_offset); }
   Vec3 to_program(const Vec3& m) const { return frames.to_program(m, modal.work_offset); }
   Block make_block(BlockType type, int column) const {
@@ -155,6 +155,10 @@ private:
     check_point(b.start, b.location.column);
     check_point(b.end, b.location.column);
     for (int i = 0; i < b.via_count; ++i) check_point(b.via[static_cast<std::size_t>(i)], b.location.column);
+    if (const Curve* c = b.curve()) {  // the direction at the end, for an arc tangent to it (CT)
+      const Vec3 d = c->derivatives_left(c->u_max(), 1)[1];
+      if (d.norm() > 0.0) end_tangent = d.normalized();
+    }
     queue.push_back(std::move(b));
   }
   void check_point(const Vec3& p, int column) const {
@@ -178,11 +182,12 @@ private:
     for (int a = 0; a < 3; ++a)
       if (w->has(letters[a])) {
         const double v = w->get(letters[a]) * scale();
-        t[a] = modal.distance == DistanceMode::absolute ? v : pos[a] + v;
+        t[a] = w->absolute(letters[a], modal.distance == DistanceMode::absolute) ? v : pos[a] + v;
       }
+    if (w->polar != 0) t = polar_target(t);
     return t;
   }
-  bool has_axes() const noexcept { return w->has('X') || w->has('Y') || w->has('Z'); }
+  bool has_axes() const noexcept { return w->has('X') || w->has('Y') || w->has('Z') || w->polar != 0; }
 
   // Feed of a feed move (not rapid); errors if none is in effect.
   Feed feed_move(const std::string& what) const {
@@ -294,6 +299,19 @@ private:
 
   // ---- canned cycles G73, G81, G82, G83 (XY plane), expanded into moves
   void cycle(int motion, int col);
+
+  // ---- the programmable frame (programmable_frame.cpp): a block of a FrameOp alone
+  void programmable_frame();
+  // ---- polar coordinates and CT (programmable_frame.cpp)
+  Vec3 pole = Vec3::Zero();           // program coordinates (in the plane) of the polar pole
+  Vec3 end_tangent = Vec3::Zero();    // machine direction at the end of the last move (0: none)
+  // G110 / G111 / G112: a block defining the pole alone
+  void define_pole();
+  // `t` with its plane coordinates from AP= / RP= about the pole (the one not given: the current
+  // position's)
+  Vec3 polar_target(const Vec3& t) const;
+  // CT: an arc from the position to `to`, tangent to the previous move
+  void tangent_arc(const Vec3& to, int col);
 };
 
 }  // namespace kontur::gcode::detail

@@ -23,6 +23,7 @@ enum MGroup : int { m_stop = 4, m_io = 5, m_tool = 6, m_spindle = 7, m_coolant =
 /// Motion modes that are not G codes (block keywords), and G80 (no motion).
 inline constexpr int motion_cip = 10000;
 inline constexpr int motion_conic = 10001;
+inline constexpr int motion_ct = 10002;  // Sinumerik CT: an arc tangent to the previous move
 inline constexpr int motion_none = 800;  // G80
 
 /// What the tables say about a code.

@@ -52,7 +52,10 @@ void Reader::Impl::read_more() {
   }
   switch (front_end->read_line(raw, words)) {
     case detail::LineOutcome::nothing: return;
-    case detail::LineOutcome::words: executor.execute(words); return;
+    case detail::LineOutcome::words:
+      executor.execute(words);
+      while (!executor.ended() && front_end->pending_words(words)) executor.execute(words);
+      return;
     case detail::LineOutcome::program_end: executor.end_program(); return;
   }
 }

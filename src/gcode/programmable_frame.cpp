@@ -1,0 +1,196 @@
+// The programmable frame (Sinumerik TRANS / ATRANS, ROT / AROT, MIRROR / AMIRROR): between the work
+// offset and the program coordinates, p_work = A p + t. The absolute forms replace the whole frame
+// (an instruction without axes clears it), the additive forms append to it in its own coordinates
+// (an ATRANS after a SCALE is scaled, as on the control). An arc in a plane the frame scales unevenly
+// would be an ellipse: arc() refuses it. Also Sinumerik's
+// polar coordinates (the pole of G110 / G111 / G112, targets from AP= / RP=) and CT, the arc
+// tangent to the previous move.
+#include "executor.hpp"
+
+#include <cmath>
+
+namespace kontur::gcode::detail {
+
+void Executor::programmable_frame() {
+  static constexpr const char* names[] = {"", "TRANS", "ATRANS", "ROT", "AROT", "SCALE", "ASCALE", "MIRROR", "AMIRROR"};
+  const FrameOp op = w->frame_op;
+  const std::string word = names[static_cast<int>(op)];
+  const int col = w->frame_column > 0 ? w->frame_column : block_column();
+  for (char c = 'A'; c <= 'Z'; ++c)
+    if (w->has(c) && c != 'X' && c != 'Y' && c != 'Z')
+      fail(w->col(c), "frame-words", fmt::format("{}: {} is not allowed in a frame block (X Y Z{} only)", word, c,
+                                                 op == FrameOp::rot || op == FrameOp::arot ? " RPL=" : ""));
+  if (w->g_count > 0 || w->m_count > 0 || w->keyword != Keyword::none)
+    fail(col, "frame-words", fmt::format("{}: a frame instruction stands in a block of its own", word));
+  const Vec3 machine = to_machine(pos);
+  Eigen::Matrix3d a = frames.programmable_linear();
+  Vec3 t = frames.programmable_translation();
+  const bool any = has_axes() || w->frame_has_rpl;
+  auto axis_value = [&](int axis) {
+    const char letter = static_cast<char>('X' + axis);
+    return w->has(letter) ? w->get(letter) : 0.0;
+  };
+  switch (op) {
+    case FrameOp::trans:
+    case FrameOp::atrans: {
+      if (w->frame_has_rpl) fail(col, "frame-words", fmt::format("{}: RPL= belongs to ROT / AROT", word));
+      const Vec3 v(axis_value(0) * scale(), axis_value(1) * scale(), axis_value(2) * scale());
+      if (op == FrameOp::trans) {
+        a.setIdentity();
+        t = v;
+      } else {
+        t += a * v;
+      }
+      break;
+    }
+    case FrameOp::rot:
+    case FrameOp::arot: {
+      if (w->frame_has_rpl && has_axes())
+        fail(col, "frame-words", fmt::format("{}: RPL= or X Y Z angles, not both", word));
+      Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
+      const double d = pi / 180.0;
+      if (w->frame_has_rpl) {
+        r = Eigen::AngleAxisd(w->frame_rpl * d, unit(plane_axes(modal.plane).n)).toRotationMatrix();
+      } else {  // about Z, then the new Y, then the new X (Sinumerik's default order)
+        r = (Eigen::AngleAxisd(axis_value(2) * d, Vec3::UnitZ()) * Eigen::AngleAxisd(axis_value(1) * d, Vec3::UnitY()) *
+             Eigen::AngleAxisd(axis_value(0) * d, Vec3::UnitX()))
+                .toRotationMatrix();
+      }
+      if (op == FrameOp::rot) {
+        a = r;
+        t.setZero();
+      } else {
+        a = a * r;
+      }
+      break;
+    }
+    case FrameOp::scale:
+    case FrameOp::ascale: {  // factors per axis (1 where not given); an arc needs equal ones in its plane
+      if (w->frame_has_rpl) fail(col, "frame-words", fmt::format("{}: RPL= belongs to ROT / AROT", word));
+      Eigen::Matrix3d m = Eigen::Matrix3d::Identity();
+      for (int axis = 0; axis < 3; ++axis) {
+        const char letter = static_cast<char>('X' + axis);
+        if (!w->has(letter)) continue;
+        const double f = w->get(letter);
+        if (!(std::abs(f) > 1e-9) || std::abs(f) > 1e6)
+          fail(w->col(letter), "frame-words", fmt::format("{} {}{}: a scale factor must not be 0", word, letter, num(f)));
+        m(axis, axis) = f;
+      }
+      if (op == FrameOp::scale) {
+        a = m;
+        t.setZero();
+      } else {
+        a = a * m;
+      }
+      break;
+    }
+    case FrameOp::mirror:
+    case FrameOp::amirror: {
+      if (w->frame_has_rpl) fail(col, "frame-words", fmt::format("{}: RPL= belongs to ROT / AROT", word));
+      Eigen::Matrix3d m = Eigen::Matrix3d::Identity();
+      for (int axis = 0; axis < 3; ++axis)
+        if (w->has(static_cast<char>('X' + axis))) m(axis, axis) = -1.0;
+      if (op == FrameOp::mirror) {
+        a = m;
+        t.setZero();
+      } else {
+        a = a * m;
+      }
+      break;
+    }
+    default: fail(col, "internal", "frame operation not handled");
+  }
+  if ((op == FrameOp::trans || op == FrameOp::rot || op == FrameOp::mirror || op == FrameOp::scale) && !any) {
+    a.setIdentity();  // TRANS / ROT / MIRROR alone: no programmable frame
+    t.setZero();
+  }
+  frames.set_programmable(a, t);
+  pos = to_program(machine);  // the tool stays where it is; its program coordinates change
+}
+
+}  // namespace kontur::gcode::detail
+
+namespace kontur::gcode::detail {
+
+void Executor::define_pole() {
+  const int col = w->polar_column > 0 ? w->polar_column : block_column();
+  const std::string word = g_name(w->pole_g * 10);
+  if (w->polar != 0)
+    fail(col, "unsupported",
+         fmt::format("{} with AP= / RP=: a pole given in polar coordinates is not supported by Kontur (dialect sinumerik)", word));
+  if (w->g_count > 1 || w->m_count > 0 || w->keyword != Keyword::none)
+    fail(col, "pole", fmt::format("{}: a pole is defined in a block of its own", word));
+  const PlaneAxes pa = plane_axes(modal.plane);
+  const Vec3 base = w->pole_g == 110 ? pos : w->pole_g == 112 ? pole : Vec3::Zero();
+  Vec3 p = base;
+  for (const int a : {pa.a1, pa.a2}) {
+    const char letter = static_cast<char>('X' + a);
+    if (w->has(letter)) p[a] = (w->pole_g == 111 ? 0.0 : base[a]) + w->get(letter) * scale();
+  }
+  if (w->has(static_cast<char>('X' + pa.n)))
+    fail(w->col(static_cast<char>('X' + pa.n)), "pole",
+         fmt::format("{}: the pole lies in the plane; {} is its normal axis", word, static_cast<char>('X' + pa.n)));
+  pole = p;
+}
+
+Vec3 Executor::polar_target(const Vec3& t) const {
+  const PlaneAxes pa = plane_axes(modal.plane);
+  for (const int a : {pa.a1, pa.a2}) {
+    const char letter = static_cast<char>('X' + a);
+    if (w->has(letter))
+      fail(w->col(letter), "polar",
+           fmt::format("{}: an axis of the plane with AP= / RP= in one block (polar coordinates give both)", letter));
+  }
+  const double rel1 = pos[pa.a1] - pole[pa.a1], rel2 = pos[pa.a2] - pole[pa.a2];
+  const double angle = (w->polar & 1u) ? w->polar_angle * pi / 180.0 : std::atan2(rel2, rel1);
+  const double radius = (w->polar & 2u) ? w->polar_radius * scale() : std::hypot(rel1, rel2);
+  if (radius < 0.0) fail(w->polar_column, "polar", fmt::format("RP={}: the radius must be >= 0", num(w->polar_radius)));
+  Vec3 r = t;
+  r[pa.a1] = pole[pa.a1] + radius * std::cos(angle);
+  r[pa.a2] = pole[pa.a2] + radius * std::sin(angle);
+  return r;
+}
+
+void Executor::tangent_arc(const Vec3& to, int col) {
+  const PlaneAxes pa = plane_axes(modal.plane);
+  const Vec3 n = unit(pa.n);
+  Vec3 t = rotation().inverse() * end_tangent;  // in program coordinates
+  t -= t.dot(n) * n;
+  if (!(t.norm() > 1e-9))
+    fail(col, "ct-tangent",
+         "CT: no direction to be tangent to (a tangential arc needs a move before it that is not along the plane's "
+         "normal)");
+  t.normalize();
+  const Vec3 s_p = pos - pos.dot(n) * n, e_p = to - to.dot(n) * n;
+  const Vec3 chord = e_p - s_p;
+  if (chord.norm() <= tolerances::gcode_same_point_mm)
+    fail(col, "ct-tangent", "CT: the end point is the start point (in the plane)");
+  const Vec3 left = n.cross(t);
+  const double across = chord.dot(left);
+  if (std::abs(across) <= 1e-12 * chord.norm()) {  // along the tangent: the arc is a straight line
+    line_move(BlockType::line, to, col, feed_move("CT"));
+    return;
+  }
+  const double r = chord.squaredNorm() / (2.0 * across);  // > 0: the centre on the left, counter-clockwise
+  const Vec3 offset = r * left;
+  Words arc_words = *w;
+  const char letters[3] = {'I', 'J', 'K'};
+  for (const char c : {'I', 'J', 'K', 'R', 'P'}) arc_words.present &= ~(1u << (c - 'A'));
+  arc_words.keyword = Keyword::none;
+  for (const int a : {pa.a1, pa.a2}) {
+    arc_words.set(letters[a], offset[a] / scale(), col);
+    arc_words.incremental_words |= 1u << (letters[a] - 'A');
+    arc_words.absolute_words &= ~(1u << (letters[a] - 'A'));
+  }
+  const Words* block = w;
+  w = &arc_words;
+  try {
+    arc(r < 0.0, to, col);
+  } catch (...) {
+    w = block;
+    throw;
+  }
+  w = block;
+}
+
+}  // namespace kontur::gcode::detail
