@@ -12,12 +12,6 @@
 namespace kontur::gcode {
 namespace {
 
-ReaderOptions options_of(Dialect d) {
-  ReaderOptions o;
-  o.dialect = d;
-  return o;
-}
-
 struct Read {
   std::vector<Block> blocks;
   std::vector<std::string> warnings;
@@ -173,7 +167,7 @@ TEST(GcodeFanucDialect, SystemVariablesReadTheMachineState) {
   EXPECT_EQ(e[0], Vec3(105, 56, -3));          // machine = G55 offset + program
   EXPECT_EQ(e[1], Vec3(200 + 5, 50 + 56, -10 - 10));  // #5241 = 200 moved the G55 frame; X5 Y56 Z-10 in it
   EXPECT_EQ(e[2], Vec3(200 + 1 + 90 + 55, 50 + 250, -20));
-  EXPECT_TRUE(has_warning(r, "#2001: tool offsets are not modelled: read as 0"));
+  EXPECT_TRUE(has_warning(r, "#2001: tool offsets and tool data are not modelled: read as 0"));
   EXPECT_EQ(error_of("#5001 = 3\n"), "p.nc:1:1: #5001=3: #5001 is read-only (dialect fanuc)");
   EXPECT_EQ(error_of("#1 = #5061\n"), "p.nc:1:6: #5061: a system variable Kontur does not read (dialect fanuc)");
   const auto s = read("G21\n#3006 = 1 (CHECK TOOL)\nG0 X1\nM30\n");
@@ -195,7 +189,7 @@ TEST(GcodeFanucDialect, CyclesG84G85G86G89ExpandIntoTheirMoves) {
     std::vector<std::pair<BlockType, double>> moves;  // type and end Z of each block after the rapid to the hole
   };
   const std::vector<Case> cases = {
-      {"G84", {{BlockType::line, -5}, {BlockType::line, 2}, {BlockType::rapid, 10}}},
+      {"G84", {{BlockType::line, -5}, {BlockType::dwell, -5}, {BlockType::line, 2}, {BlockType::rapid, 10}}},
       {"G85", {{BlockType::line, -5}, {BlockType::line, 2}, {BlockType::rapid, 10}}},
       {"G86", {{BlockType::line, -5}, {BlockType::rapid, 10}}},
       {"G89", {{BlockType::line, -5}, {BlockType::dwell, -5}, {BlockType::line, 2}, {BlockType::rapid, 10}}},
@@ -209,7 +203,9 @@ TEST(GcodeFanucDialect, CyclesG84G85G86G89ExpandIntoTheirMoves) {
       const Block& b = r.blocks[3 + i];
       EXPECT_EQ(b.type, c.moves[i].first) << c.cycle << " " << i;
       EXPECT_DOUBLE_EQ(b.end.z(), c.moves[i].second) << c.cycle << " " << i;
-      if (b.type == BlockType::dwell) EXPECT_DOUBLE_EQ(b.dwell_s, 0.5) << c.cycle;  // P500: milliseconds
+      if (b.type == BlockType::dwell) {
+        EXPECT_DOUBLE_EQ(b.dwell_s, 0.5) << c.cycle;  // P500: milliseconds
+      }
     }
   }
   // K repeats (incremental), G99 back to R
@@ -242,7 +238,7 @@ TEST(GcodeFanucDialect, IntegerAxisWordsAreWholeUnitsWithOneWarningForFanuc) {
   EXPECT_DOUBLE_EQ(r.blocks[0].end.y(), 100.0);
   ASSERT_EQ(r.warnings.size(), 1u);
   EXPECT_EQ(r.warnings[0],
-            "p.nc:2:5: warning: Y100: written without a decimal point, read as 100 mm; a fanuc with parameter 3401#0 "
+            "p.nc:2:7: warning: Y100: written without a decimal point, read as 100 mm; a fanuc with parameter 3401#0 "
             "DPI=0 reads it as 100 least increments (0.1 mm) (warned once)");
   EXPECT_TRUE(read("G21 G90 F100\nG1 X0 Y100\nM30\n", Dialect::haas).warnings.empty());
 }

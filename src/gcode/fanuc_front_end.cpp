@@ -134,7 +134,11 @@ bool FanucFrontEnd::statements(std::size_t pos, Words& words) {
       p += 4;
       if (p >= t.size() || t[p] != '#')
         refuse(col(p), "IF .. THEN", "only an assignment #i = .. may follow THEN");
-      if (cond.v != 0.0) assignment(p);
+      if (cond.v != 0.0) {
+        assignment(p);
+        if (p < t.size())
+          fail_at(nl, p, diag.context(), "syntax", fmt::format("'{}': unexpected after IF .. THEN #i = ..", excerpt(nl, p)));
+      }
       return false;
     }
     fail_at(nl, p, diag.context(), "syntax", fmt::format("'{}': GOTO or THEN expected after IF [..]", excerpt(nl, p)));
@@ -152,6 +156,11 @@ bool FanucFrontEnd::statements(std::size_t pos, Words& words) {
     end_loop(static_cast<int>(id), c);
     return false;
   }
+  for (const char* io : {"DPRNT", "BPRNT", "POPEN", "PCLOS"})
+    if (starts(pos, io)) {  // output to a port: no motion
+      diag.warn(c, fmt::format("{}: output to a port, ignored (it does not move the axes)", io));
+      return false;
+    }
   if (t[pos] == '#') assignment(pos);
   if (pos >= t.size()) return false;
   parse_words(pos, words);
@@ -191,10 +200,11 @@ MacroValue FanucFrontEnd::read_var(double index, std::size_t at) {
   if (i >= 100 && i <= 199) return value(common100[static_cast<std::size_t>(i - 100)]);
   if (i >= 500 && i <= 999) return value(common500[static_cast<std::size_t>(i - 500)]);
   const int col = at < nl.column.size() ? nl.column[at] : 1;
-  if ((i >= 2001 && i <= 2999) || (i >= 10001 && i <= 19999)) {
+  const bool haas_tool_data = dialect_ == Dialect::haas && ((i >= 1601 && i <= 2000) || (i >= 5401 && i <= 5999));
+  if ((i >= 2001 && i <= 2999) || (i >= 10001 && i <= 19999) || haas_tool_data) {
     if (!tool_offset_warned) {
       tool_offset_warned = true;
-      diag.warn(col, fmt::format("#{}: tool offsets are not modelled: read as 0 (warned once)", i));
+      diag.warn(col, fmt::format("#{}: tool offsets and tool data are not modelled: read as 0 (warned once)", i));
     }
     return MacroValue{0.0, false};
   }
@@ -313,6 +323,10 @@ void FanucFrontEnd::parse_words(std::size_t pos, Words& w) {
     const bool literal = pos < t.size() && (is_digit(t[pos]) || t[pos] == '.' || t[pos] == '-' || t[pos] == '+');
     const MacroValue v = value_at(pos, true);
     const std::string_view word = std::string_view(t).substr(start, pos - start);
+    if (pos < t.size() && (t[pos] == '+' || t[pos] == '-' || t[pos] == '*' || t[pos] == '/'))
+      fail_at(nl, pos, ctx, "syntax",
+              fmt::format("'{}': arithmetic in a word needs brackets (dialect {} reads {}#i or {}[expression])",
+                          excerpt(nl, start), to_string(dialect_), c, c));
     if (v.vacant) continue;  // a vacant variable: the word is omitted (Fanuc)
     const bool integer = literal && word.find('.') == std::string_view::npos && word.find('#') == std::string_view::npos &&
                          word.find('[') == std::string_view::npos;
@@ -386,6 +400,26 @@ void FanucFrontEnd::dialect_codes(Words& w) {
       drop_g(i);
       continue;
     }
+    // cancel codes of features Kontur does not run (scaling, rotation, polar coordinates, mirror)
+    if (g == 500 || g == 690 || g == 150 || g == 501) {
+      if (g == 500 && (w.has('X') || w.has('Z')))
+        refuse(col, name, "the lathe's coordinate system setting (G50 X Z) is not supported");
+      if (g == 500) drop("S");  // G50 S: the spindle speed limit
+      drop_g(i);
+      continue;
+    }
+    if (g == 1030) {  // Haas G103 P: block look-ahead limit
+      diag.warn(col, fmt::format("{}: the look-ahead limit is the planner's business: read as no code", name));
+      drop("P");
+      drop_g(i);
+      continue;
+    }
+    if (g == 680 || g == 510 || g == 511 || g == 160 || g == 310)
+      refuse(col, name, g == 680   ? "coordinate system rotation is not supported"
+                        : g == 510 ? "scaling is not supported"
+                        : g == 511 ? "programmable mirror image is not supported"
+                        : g == 160 ? "polar coordinate programming is not supported"
+                                   : "the skip function (probing) is not supported");
     if (g == 650) {
       action = Action::g65;
       action_col = col;
