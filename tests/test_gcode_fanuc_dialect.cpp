@@ -232,6 +232,23 @@ TEST(GcodeFanucDialect, NoOpCodesAreWarnedAndModalMacroCallsRefused) {
   EXPECT_EQ(read("G21 F100.\nG1 X1. ; a comment\nM30\n", Dialect::mach3).blocks.size(), 1u);
 }
 
+TEST(GcodeFanucDialect, Mach3ReadsItsOlderUnitCodesAndTheG92Variables) {
+  const auto r = read("G71 G90 F100\nG0 X10 Y4\nG92 X0 Y0\n#1 = #5211\n#2 = #5212\nG1 X#1 Y#2\nM98 P100\nM30\nO100\n"
+                      "G91 G1 Z-1\nG90\nM99\n",
+                      Dialect::mach3);
+  ASSERT_EQ(r.blocks.size(), 3u);
+  EXPECT_EQ(r.blocks[1].end, Vec3(20, 8, 0));  // X10 Y4 in the G92 frame, whose offset is (10, 4)
+  EXPECT_EQ(r.blocks[2].end, Vec3(20, 8, -1));
+  EXPECT_TRUE(r.warnings.empty()) << r.warnings[0];
+}
+
+TEST(GcodeFanucDialect, PortOutputIsIgnoredWithAWarning) {
+  const auto r = read("G21 F100.\nPOPEN\nDPRNT[DATE*(AAMMDD):*#3011]\nPCLOS\nG1 X1.\nM30\n", Dialect::haas);
+  ASSERT_EQ(r.blocks.size(), 1u);
+  ASSERT_EQ(r.warnings.size(), 3u);
+  EXPECT_EQ(r.warnings[1], "p.nc:3:1: warning: DPRNT: output to a port, ignored (it does not move the axes)");
+}
+
 TEST(GcodeFanucDialect, IntegerAxisWordsAreWholeUnitsWithOneWarningForFanuc) {
   const auto r = read("G21 G90 F100\nG1 X0 Y100\nG1 X25\nM30\n");
   ASSERT_EQ(r.blocks.size(), 2u);

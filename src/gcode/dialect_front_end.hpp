@@ -62,6 +62,8 @@ public:
   [[nodiscard]] virtual double feed_rate() const noexcept = 0;
   /// The offset of work system `system` (1 = G54 .. 9 = G59.3) [mm].
   [[nodiscard]] virtual Vec3 work_offset(int system) const = 0;
+  /// The G92 offset [mm] (LinuxCNC's and Mach3's #5211-#5213).
+  [[nodiscard]] virtual Vec3 g92_offset() const = 0;
   /// Sets one axis (0 X, 1 Y, 2 Z) of the offset of work system `system` [mm], as G10 L2 does.
   virtual void set_work_offset(int system, int axis, double mm) = 0;
 

@@ -79,6 +79,8 @@ public:
     // to_machine(p) = R (p + g92) + offset and offset_placing(0, p) = -R (p + g92)
     return frames.to_machine(Vec3::Zero(), system) + frames.offset_placing(Vec3::Zero(), Vec3::Zero(), system);
   }
+  // work system 0 has no offset and no rotation: what remains is the G92 offset
+  [[nodiscard]] Vec3 g92_offset() const override { return frames.to_machine(Vec3::Zero(), 0); }
   void set_work_offset(int system, int axis, double mm) override {
     const Vec3 m = to_machine(pos);
     frames.set_offset(system, axis, mm);

@@ -4,6 +4,7 @@
 #include "message_format.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 namespace kontur::gcode::detail {
@@ -58,7 +59,8 @@ void FanucFrontEnd::index_file() {
         else if (number < 100000000) number = number * 10 + (raw[j] - '0');
         ++j;
       }
-      std::string name = "O" + std::string(raw.substr(i + 1, j - i - 1));
+      std::string name(1, 'O');
+      name.append(raw.substr(i + 1, j - i - 1));
       for (char& ch : name) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
       programs.push_back(Program{digits ? number : -1, std::move(name), Pos{at, ln}, Pos{input.tell(), ln + 1}});
       continue;

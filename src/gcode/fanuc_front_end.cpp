@@ -6,6 +6,7 @@
 #include "modal_groups.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 
@@ -52,6 +53,22 @@ LineOutcome FanucFrontEnd::read_line(std::string_view raw, Words& words) {
   next_offset = input.tell();
   line_no = diag.line();
   raw_line.assign(raw);
+  {  // DPRNT[..] / BPRNT / POPEN / PCLOS: output to a port (free text), no motion
+    std::size_t i = raw.find_first_not_of(" \t");
+    if (i != std::string_view::npos && (raw[i] == 'N' || raw[i] == 'n')) {
+      ++i;
+      while (i < raw.size() && (is_digit(raw[i]) || raw[i] == ' ' || raw[i] == '\t')) ++i;
+    }
+    if (i != std::string_view::npos && i + 5 <= raw.size()) {
+      std::string word(raw.substr(i, 5));
+      for (char& ch : word) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+      if (word == "DPRNT" || word == "BPRNT" || word == "POPEN" || word == "PCLOS") {
+        seen_block = true;
+        diag.warn(static_cast<int>(i) + 1, fmt::format("{}: output to a port, ignored (it does not move the axes)", word));
+        return LineOutcome::nothing;
+      }
+    }
+  }
   normalize_line(raw, diag.context(), nl, rules);
   words.clear();
   if (nl.percent) {
@@ -156,11 +173,6 @@ bool FanucFrontEnd::statements(std::size_t pos, Words& words) {
     end_loop(static_cast<int>(id), c);
     return false;
   }
-  for (const char* io : {"DPRNT", "BPRNT", "POPEN", "PCLOS"})
-    if (starts(pos, io)) {  // output to a port: no motion
-      diag.warn(c, fmt::format("{}: output to a port, ignored (it does not move the axes)", io));
-      return false;
-    }
   if (t[pos] == '#') assignment(pos);
   if (pos >= t.size()) return false;
   parse_words(pos, words);
@@ -219,6 +231,7 @@ MacroValue FanucFrontEnd::read_var(double index, std::size_t at) {
     if (i >= 5221 && i <= 5221 + 20 * 5 + 2 && (i - 5221) % 20 <= 2)
       return num_of(state->work_offset((i - 5221) / 20 + 1)[(i - 5221) % 20] / u);
     if ((i >= 5201 && i <= 5203) || (i >= 5081 && i <= 5083)) return num_of(0.0);  // external / tool offsets: none
+    if (i >= 5211 && i <= 5213 && dialect_ == Dialect::mach3) return num_of(state->g92_offset()[i - 5211] / u);
     if (i == 4109) return num_of(state->feed_rate() / u);
     if (i == 4119) return num_of(m.spindle_rpm);
     if (i == 4120) return num_of(m.tool);
@@ -435,6 +448,11 @@ void FanucFrontEnd::dialect_codes(Words& w) {
       refuse(col, name, g == 740 ? "the left-hand tapping cycle is not supported"
                                  : g == 760 ? "the fine boring cycle (oriented spindle stop and shift) is not supported"
                                             : "the back boring cycle is not supported");
+    if (dialect_ == Dialect::mach3 && (g == 700 || g == 710)) {  // Mach3's older inch / mm codes
+      w.g[static_cast<std::size_t>(i)] = g == 700 ? 200 : 210;
+      ++i;
+      continue;
+    }
     if (g == 40) dwell_block = true;
     if (is_canned_cycle(g)) cycle_block = true;
     if (g == 0 || g == 10 || g == 20 || g == 30 || g == 800) motion_word = true;
