@@ -227,6 +227,16 @@ TEST(GcodeFanucDialect, NoOpCodesAreWarnedAndModalMacroCallsRefused) {
   const auto h = read("G21 F100.\nG187 P1 E0.01\nG1 X1.\nM30\n", Dialect::haas);
   EXPECT_TRUE(has_warning(h, "G187: accuracy control"));
   EXPECT_EQ(error_of("G21\nG66 P9010 X1.\n"), "p.nc:2:1: G66: modal macro calls are not supported (dialect fanuc)");
+  const auto l20 = read("G21 F100.\nG10 L20 P1 X5.\nG1 X1.\nM30\n");
+  ASSERT_EQ(l20.blocks.size(), 1u);
+  EXPECT_EQ(l20.blocks[0].end, Vec3(1, 0, 0));
+  EXPECT_TRUE(has_warning(l20, "p.nc:2:1: warning: G10 L20: the additional work offsets (G54.1 Pn) are not modelled"));
+  EXPECT_EQ(error_of("G21\nG54.1 P3\n", Dialect::mitsubishi),
+            "p.nc:2:1: G54.1: additional work coordinate systems (G54.1 Pn, Haas G154 Pn) are not supported (dialect "
+            "mitsubishi)");
+  EXPECT_EQ(error_of("G21\nG10 L2 P0 X1.\n"),
+            "p.nc:2:1: G10 L2 P0: the external work offset (EXT, shifting every work system) is not supported (dialect "
+            "fanuc)");
   EXPECT_EQ(error_of("G21\nG1 X1. ; comment\n"),
             "p.nc:2:8: ';': ends the block here (it is no comment in dialect fanuc); write comments in ( )");
   EXPECT_EQ(read("G21 F100.\nG1 X1. ; a comment\nM30\n", Dialect::mach3).blocks.size(), 1u);

@@ -433,6 +433,16 @@ void FanucFrontEnd::dialect_codes(Words& w) {
                         : g == 511 ? "programmable mirror image is not supported"
                         : g == 160 ? "polar coordinate programming is not supported"
                                    : "the skip function (probing) is not supported");
+    if (g == 100 && w.has('L') && w.get('L') == 20.0 && dialect_ != Dialect::mach3) {  // G54.1 Pn offsets
+      diag.warn(col, fmt::format("{} L20: the additional work offsets (G54.1 Pn) are not modelled: ignored", name));
+      drop("LPRXYZ");
+      drop_g(i);
+      continue;
+    }
+    if (g == 100 && w.has('L') && w.get('L') == 2.0 && w.has('P') && w.get('P') == 0.0 && dialect_ != Dialect::mach3)
+      refuse(col, "G10 L2 P0", "the external work offset (EXT, shifting every work system) is not supported");
+    if (g == 541 || g == 1540)
+      refuse(col, name, "additional work coordinate systems (G54.1 Pn, Haas G154 Pn) are not supported");
     if (g == 650) {
       action = Action::g65;
       action_col = col;
