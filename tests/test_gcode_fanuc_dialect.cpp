@@ -79,6 +79,14 @@ TEST(GcodeFanucDialect, EndlessWhileIsStoppedByTheLoopLimit) {
             "loop?) (dialect fanuc)");
 }
 
+TEST(GcodeFanucDialect, ALoopWithoutItsEndIsRefused) {
+  EXPECT_EQ(error_of("G21 F100.\nWHILE [1 EQ 1] DO1\nG1 X1.\n"),
+            "p.nc:2:1: DO1: the program ends inside the loop (END1 missing) (dialect fanuc)");
+  EXPECT_EQ(error_of("G21 F100.\nWHILE [1 EQ 2] DO2\nG1 X1.\n"),
+            "p.nc:2:1: WHILE [..] DO2: END2 not found before the end of the program (dialect fanuc)");
+  EXPECT_EQ(error_of("G21\nEND1\n"), "p.nc:2:1: END1: no open WHILE [..] DO1 (dialect fanuc)");
+}
+
 TEST(GcodeFanucDialect, IfGotoJumpsForwardAndBackward) {
   const auto r = read("G21 G90 F100.\n#1=0\nN10 #1=#1+1\nG1 X#1\nIF [#1 LT 3] GOTO10\nGOTO 30\nG1 X99.\nN30 G1 Y5.\n"
                       "IF [#1 EQ 3] THEN #2=7\nG1 Z-#2\nM30\n");

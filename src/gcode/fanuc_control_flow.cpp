@@ -108,7 +108,9 @@ void FanucFrontEnd::loop_guard(int column, const std::string& what) {
 
 void FanucFrontEnd::goto_label(double n, int column, const std::string& what, std::size_t from, std::size_t scope_at) {
   const long label = whole(n);
-  if (label < 0) diag.fail(column, "goto", fmt::format("{}: the block number must be a whole number >= 0", what));
+  if (label < 0)
+    diag.fail(column, "goto", fmt::format("{}: the block number must be a whole number >= 0 (dialect {})", what,
+                                          to_string(dialect_)));
   index_file();
   const auto [begin, end] = program_extent(scope_at);
   const Pos* target = nullptr;
@@ -295,7 +297,13 @@ LineOutcome FanucFrontEnd::next_program_reached(int column) {
 }
 
 void FanucFrontEnd::at_end_of_input() {
-  if (calls.empty()) return;
+  if (calls.empty()) {
+    if (loops.empty()) return;
+    const Loop& l = loops.back();
+    diag.fail_at_line(l.head.line, 1, "loop",
+                      fmt::format("DO{}: the program ends inside the loop (END{} missing) (dialect {})", l.id, l.id,
+                                  to_string(dialect_)));
+  }
   const Call& c = calls.back();
   diag.fail_at_line(c.line, c.column, "subprogram",
                     fmt::format("{}: the subprogram runs to the end of the file without M99 (dialect {})", c.what,
