@@ -267,6 +267,33 @@ TEST(GcodeFanucDialect, PortOutputIsIgnoredWithAWarning) {
   EXPECT_EQ(r.warnings[1], "p.nc:3:1: warning: DPRNT: output to a port, ignored (it does not move the axes)");
 }
 
+TEST(GcodeFanucDialect, EveryRefusalNamesTheLineTheFeatureAndTheDialect) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"G21\nG74 X1. Z-1. R1.\n", "p.nc:2:1: G74: the left-hand tapping cycle is not supported (dialect fanuc)"},
+      {"G21\nG87 X1. Z-1. R1.\n", "p.nc:2:1: G87: the back boring cycle is not supported (dialect fanuc)"},
+      {"G21\nG68 X0 Y0 R30.\n", "p.nc:2:1: G68: coordinate system rotation is not supported (dialect fanuc)"},
+      {"G21\nG51 X0 Y0 P2\n", "p.nc:2:1: G51: scaling is not supported (dialect fanuc)"},
+      {"G21\nG51.1 X0\n", "p.nc:2:1: G51.1: programmable mirror image is not supported (dialect fanuc)"},
+      {"G21\nG16\n", "p.nc:2:1: G16: polar coordinate programming is not supported (dialect fanuc)"},
+      {"G21\nG31 X1. F100.\n", "p.nc:2:1: G31: the skip function (probing) is not supported (dialect fanuc)"},
+      {"G21\nG50 X100. Z50.\n",
+       "p.nc:2:1: G50: the lathe's coordinate system setting (G50 X Z) is not supported (dialect fanuc)"},
+      {"#1=1\nIF [#1 EQ 1] THEN G0 X1.\n",
+       "p.nc:2:19: IF .. THEN: only an assignment #i = .. may follow THEN (dialect fanuc)"},
+      {"#1 = #7001\n", "p.nc:1:6: #7001: a system variable Kontur does not read (dialect fanuc)"},
+      {"#7001 = 1.\n", "p.nc:1:1: #7001=1: a system variable Kontur does not write (dialect fanuc)"},
+      {"#1=1\nG1 X#1+2.\n",
+       "p.nc:2:7: 'X#1+2.': arithmetic in a word needs brackets (dialect fanuc reads X#i or X[expression])"},
+      {"G21\nM97 P10\n",
+       "p.nc:2:1: M97: Haas's local subprogram call is not this control's: read the program with --dialect haas "
+       "(dialect fanuc)"},
+      {"O1\nM98 P2\nM30\nO2\nG0 X1.\nO3\nM99\n",
+       "p.nc:2:1: M98 P2: the subprogram runs into the next program O3 on line 6 without M99 (dialect fanuc)"},
+  };
+  for (const auto& [program, message] : cases) EXPECT_EQ(error_of(program), message) << program;
+  EXPECT_EQ(error_of("G21\nM97 P10\nM30\n", Dialect::haas), "p.nc:2:1: M97 P10: no block N10 in this file (dialect haas)");
+}
+
 TEST(GcodeFanucDialect, IntegerAxisWordsAreWholeUnitsWithOneWarningForFanuc) {
   const auto r = read("G21 G90 F100\nG1 X0 Y100\nG1 X25\nM30\n");
   ASSERT_EQ(r.blocks.size(), 2u);

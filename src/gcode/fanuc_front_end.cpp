@@ -471,7 +471,9 @@ void FanucFrontEnd::dialect_codes(Words& w) {
   for (int i = 0; i < w.m_count;) {
     const int m = w.m[static_cast<std::size_t>(i)];
     const int col = w.m_column[static_cast<std::size_t>(i)];
-    if (m == 98 || m == 99 || (m == 97 && (dialect_ == Dialect::haas || dialect_ == Dialect::mach3))) {
+    if (m == 97 && dialect_ != Dialect::haas && dialect_ != Dialect::mach3)
+      refuse(col, "M97", "Haas's local subprogram call is not this control's: read the program with --dialect haas");
+    if (m == 98 || m == 99 || m == 97) {
       if (action != Action::none) refuse(col, fmt::format("M{}", m), "a second call or return in one block");
       action = m == 98 ? Action::m98 : m == 97 ? Action::m97 : Action::m99;
       action_col = col;
