@@ -3,9 +3,9 @@
 // expressions, system variables), IF / GOTO / WHILE control flow, the Fanuc cycles G84-G89,
 // the codes read as no-ops, and every refusal's message.
 #include <gtest/gtest.h>
+
 #include <kontur/error.hpp>
 #include <kontur/gcode/reader.hpp>
-
 #include <string>
 #include <vector>
 
@@ -50,8 +50,9 @@ bool has_warning(const Read& r, const std::string& part) {
 }
 
 TEST(GcodeFanucDialect, MacroBWhileLoopGivesExactEndPoints) {
-  const auto r = read("%\nO1000 (LOOP)\nG21 G90 G17 F100.\n#1 = 0\nWHILE [#1 LT 4] DO1\nG1 X[#1 * 2.5] Y[#1 * #1]\n"
-                      "#1 = #1 + 1\nEND1\nM30\n%\n");
+  const auto r = read(
+      "%\nO1000 (LOOP)\nG21 G90 G17 F100.\n#1 = 0\nWHILE [#1 LT 4] DO1\nG1 X[#1 * 2.5] Y[#1 * #1]\n"
+      "#1 = #1 + 1\nEND1\nM30\n%\n");
   const auto e = ends(r);
   ASSERT_EQ(e.size(), 4u);
   for (int i = 0; i < 4; ++i) {
@@ -63,8 +64,9 @@ TEST(GcodeFanucDialect, MacroBWhileLoopGivesExactEndPoints) {
 }
 
 TEST(GcodeFanucDialect, NestedLoopsAndAFalseWhileSkipsToItsEnd) {
-  const auto r = read("G21 F100.\n#1=0\nWHILE[#1LT2]DO1\n#2=0\nWHILE[#2LT3]DO2\nG1X#1Y#2\n#2=#2+1\nEND2\n#1=#1+1\nEND1\n"
-                      "WHILE[#1GT100]DO1\nG1X99.\nEND1\nG1 Z-1.\nM30\n");
+  const auto r = read(
+      "G21 F100.\n#1=0\nWHILE[#1LT2]DO1\n#2=0\nWHILE[#2LT3]DO2\nG1X#1Y#2\n#2=#2+1\nEND2\n#1=#1+1\nEND1\n"
+      "WHILE[#1GT100]DO1\nG1X99.\nEND1\nG1 Z-1.\nM30\n");
   const auto e = ends(r);
   ASSERT_EQ(e.size(), 7u);
   EXPECT_EQ(e[4], Vec3(1, 1, 0));
@@ -88,8 +90,9 @@ TEST(GcodeFanucDialect, ALoopWithoutItsEndIsRefused) {
 }
 
 TEST(GcodeFanucDialect, IfGotoJumpsForwardAndBackward) {
-  const auto r = read("G21 G90 F100.\n#1=0\nN10 #1=#1+1\nG1 X#1\nIF [#1 LT 3] GOTO10\nGOTO 30\nG1 X99.\nN30 G1 Y5.\n"
-                      "IF [#1 EQ 3] THEN #2=7\nG1 Z-#2\nM30\n");
+  const auto r = read(
+      "G21 G90 F100.\n#1=0\nN10 #1=#1+1\nG1 X#1\nIF [#1 LT 3] GOTO10\nGOTO 30\nG1 X99.\nN30 G1 Y5.\n"
+      "IF [#1 EQ 3] THEN #2=7\nG1 Z-#2\nM30\n");
   const auto e = ends(r);
   ASSERT_EQ(e.size(), 5u);
   EXPECT_EQ(e[2], Vec3(3, 0, 0));
@@ -100,23 +103,25 @@ TEST(GcodeFanucDialect, IfGotoJumpsForwardAndBackward) {
 }
 
 TEST(GcodeFanucDialect, VacantVariablesOmitTheirWordsAndCompareApartFromZero) {
-  const auto r = read("G21 G90 F100.\nG1 X1. Y2.\n#5 = 0\nG1 X#1 Y#5\nIF [#1 EQ #0] THEN #6 = 1\nIF [#5 EQ #0] THEN #6 = 2\n"
-                      "IF [#1 EQ 0] THEN #7 = 1\n#8 = #1 + 4\nG1 Z-[#6 + #8]\n#9 = #0\nG1 X#9\nM30\n");
+  const auto r = read(
+      "G21 G90 F100.\nG1 X1. Y2.\n#5 = 0\nG1 X#1 Y#5\nIF [#1 EQ #0] THEN #6 = 1\nIF [#5 EQ #0] THEN #6 = 2\n"
+      "IF [#1 EQ 0] THEN #7 = 1\n#8 = #1 + 4\nG1 Z-[#6 + #8]\n#9 = #0\nG1 X#9\nM30\n");
   const auto e = ends(r);
   ASSERT_EQ(e.size(), 3u);
-  EXPECT_EQ(e[1], Vec3(1, 0, 0));    // X#1 vacant: X omitted
-  EXPECT_EQ(e[2], Vec3(1, 0, -5));   // #6 = 1 (vacant EQ #0, 0 NE #0), #8 = 0 + 4
-  EXPECT_EQ(r.blocks.size(), 3u);    // G1 X#9 (vacant): no motion word, no block
+  EXPECT_EQ(e[1], Vec3(1, 0, 0));   // X#1 vacant: X omitted
+  EXPECT_EQ(e[2], Vec3(1, 0, -5));  // #6 = 1 (vacant EQ #0, 0 NE #0), #8 = 0 + 4
+  EXPECT_EQ(r.blocks.size(), 3u);   // G1 X#9 (vacant): no motion word, no block
 }
 
 TEST(GcodeFanucDialect, ExpressionsFollowFanucsPrecedenceAndFunctions) {
-  const auto r = read("G21 G90 F100.\n#1 = 2 + 3 * 4\n#2 = ATAN[-1]/[-1]\n#3 = FIX[-1.7] + FUP[1.2] + ROUND[2.5]\n"
-                      "#4 = SQRT[16] + ABS[-2] + POW[2,3] + [7 MOD 4] + BIN[BCD[12]]\n#5 = [1 OR 2] + [6 AND 3] + [5 XOR 1]\n"
-                      "G1 X#1 Y#2 Z#3\nG1 X#4 Y#5 Z[SIN[30] + COS[60]]\nM30\n");
+  const auto r = read(
+      "G21 G90 F100.\n#1 = 2 + 3 * 4\n#2 = ATAN[-1]/[-1]\n#3 = FIX[-1.7] + FUP[1.2] + ROUND[2.5]\n"
+      "#4 = SQRT[16] + ABS[-2] + POW[2,3] + [7 MOD 4] + BIN[BCD[12]]\n#5 = [1 OR 2] + [6 AND 3] + [5 XOR 1]\n"
+      "G1 X#1 Y#2 Z#3\nG1 X#4 Y#5 Z[SIN[30] + COS[60]]\nM30\n");
   const auto e = ends(r);
   ASSERT_EQ(e.size(), 2u);
   EXPECT_DOUBLE_EQ(e[0].x(), 14.0);
-  EXPECT_DOUBLE_EQ(e[0].y(), 225.0);       // 0..360 degrees
+  EXPECT_DOUBLE_EQ(e[0].y(), 225.0);  // 0..360 degrees
   EXPECT_DOUBLE_EQ(e[0].z(), -1.0 + 2.0 + 3.0);
   EXPECT_DOUBLE_EQ(e[1].x(), 4.0 + 2.0 + 8.0 + 3.0 + 12.0);
   EXPECT_DOUBLE_EQ(e[1].y(), 3.0 + 2.0 + 4.0);
@@ -125,12 +130,13 @@ TEST(GcodeFanucDialect, ExpressionsFollowFanucsPrecedenceAndFunctions) {
 }
 
 TEST(GcodeFanucDialect, M98RepeatsAndNestedCallsRunSubprogramsAfterTheMain) {
-  const auto r = read("%\nO0001 (MAIN)\nG21 G90 G17 F100.\nG0 X0 Y0\nM98 P1000 L3\nM98 P00022000\nM30\n"
-                      "O1000 (STEP)\nG91 G1 X1.\nG90\nM99\nO2000\nM98 P3000\nG91 G1 Y10.\nG90\nM99\nO3000\nG91 G1 Z-1.\nG90\nM99\n%\n");
+  const auto r = read(
+      "%\nO0001 (MAIN)\nG21 G90 G17 F100.\nG0 X0 Y0\nM98 P1000 L3\nM98 P00022000\nM30\n"
+      "O1000 (STEP)\nG91 G1 X1.\nG90\nM99\nO2000\nM98 P3000\nG91 G1 Y10.\nG90\nM99\nO3000\nG91 G1 Z-1.\nG90\nM99\n%\n");
   const auto e = ends(r);
   ASSERT_EQ(e.size(), 8u);
   EXPECT_EQ(e[3], Vec3(3, 0, 0));
-  EXPECT_EQ(e[4], Vec3(3, 0, -1));   // O2000 (twice, the older P0002 2000 form) calls O3000 first
+  EXPECT_EQ(e[4], Vec3(3, 0, -1));  // O2000 (twice, the older P0002 2000 form) calls O3000 first
   EXPECT_EQ(e[5], Vec3(3, 10, -1));
   EXPECT_EQ(e[7], Vec3(3, 20, -2));
   EXPECT_EQ(r.blocks[1].location.line, 9);  // the subprogram's line
@@ -142,8 +148,9 @@ TEST(GcodeFanucDialect, M98RepeatsAndNestedCallsRunSubprogramsAfterTheMain) {
 }
 
 TEST(GcodeFanucDialect, G65PassesArgumentsAsLocalVariablesOfItsOwnLevel) {
-  const auto r = read("O1\nG21 G90 F100.\n#1 = 5\nG65 P9001 X10. Y20. R3. A2.\nG1 Z-#1\nM30\nO9001\n"
-                      "IF [#2 NE #0] THEN #3000 = 1 (B GIVEN)\nG1 X[#24 + #1] Y#25 Z-#18\nM99\n");
+  const auto r = read(
+      "O1\nG21 G90 F100.\n#1 = 5\nG65 P9001 X10. Y20. R3. A2.\nG1 Z-#1\nM30\nO9001\n"
+      "IF [#2 NE #0] THEN #3000 = 1 (B GIVEN)\nG1 X[#24 + #1] Y#25 Z-#18\nM99\n");
   const auto e = ends(r);
   ASSERT_EQ(e.size(), 2u);
   EXPECT_EQ(e[0], Vec3(12, 20, -3));  // X -> #24, A -> #1, R -> #18
@@ -153,7 +160,8 @@ TEST(GcodeFanucDialect, G65PassesArgumentsAsLocalVariablesOfItsOwnLevel) {
 }
 
 TEST(GcodeFanucDialect, HaasM97RunsALocalSubprogramAtAnNNumber) {
-  const auto r = read("%\nO00002\nG21 G90 F100.\nM97 P100 L2\nG1 X0 Y0\nM30\nN100 G91 G1 X5.\nG90\nM99\n%\n", Dialect::haas);
+  const auto r =
+      read("%\nO00002\nG21 G90 F100.\nM97 P100 L2\nG1 X0 Y0\nM30\nN100 G91 G1 X5.\nG90\nM99\n%\n", Dialect::haas);
   const auto e = ends(r);
   ASSERT_EQ(e.size(), 3u);
   EXPECT_EQ(e[1], Vec3(10, 0, 0));
@@ -167,12 +175,13 @@ TEST(GcodeFanucDialect, M99InTheMainProgramEndsItWithAWarning) {
 }
 
 TEST(GcodeFanucDialect, SystemVariablesReadTheMachineState) {
-  const auto r = read("G21 G90 G17 F250.\nG10 L2 P2 X100. Y50. Z-10.\nG55\nG1 X5. Y6. Z7.\n#1 = #5001\n#2 = #5022\n"
-                      "#3 = #5243\n#4 = #4001 + #4003 + #4014\n#5 = #4109\n#5241 = 200.\nG1 X#1 Y#2 Z#3\nG1 X#4 Y#5\nG1 X#5241\n"
-                      "#6 = #2001\nG91 G1 X#6\nM30\n");
+  const auto r = read(
+      "G21 G90 G17 F250.\nG10 L2 P2 X100. Y50. Z-10.\nG55\nG1 X5. Y6. Z7.\n#1 = #5001\n#2 = #5022\n"
+      "#3 = #5243\n#4 = #4001 + #4003 + #4014\n#5 = #4109\n#5241 = 200.\nG1 X#1 Y#2 Z#3\nG1 X#4 Y#5\nG1 X#5241\n"
+      "#6 = #2001\nG91 G1 X#6\nM30\n");
   const auto e = ends(r);
   ASSERT_EQ(e.size(), 5u);
-  EXPECT_EQ(e[0], Vec3(105, 56, -3));          // machine = G55 offset + program
+  EXPECT_EQ(e[0], Vec3(105, 56, -3));                 // machine = G55 offset + program
   EXPECT_EQ(e[1], Vec3(200 + 5, 50 + 56, -10 - 10));  // #5241 = 200 moved the G55 frame; X5 Y56 Z-10 in it
   EXPECT_EQ(e[2], Vec3(200 + 1 + 90 + 55, 50 + 250, -20));
   EXPECT_TRUE(has_warning(r, "#2001: tool offsets and tool data are not modelled: read as 0"));
@@ -187,7 +196,7 @@ TEST(GcodeFanucDialect, G91G28Z0GoesStraightUpToTheReferencePosition) {
   ASSERT_EQ(r.blocks.size(), 3u);
   EXPECT_EQ(r.blocks[1].end, Vec3(10, 20, -45));  // through the intermediate point (here: where it is)
   EXPECT_EQ(r.blocks[2].type, BlockType::rapid);
-  EXPECT_EQ(r.blocks[2].end, Vec3(10, 20, 0));    // Z to the reference position, X and Y stay
+  EXPECT_EQ(r.blocks[2].end, Vec3(10, 20, 0));  // Z to the reference position, X and Y stay
 }
 
 TEST(GcodeFanucDialect, CyclesG84G85G86G89ExpandIntoTheirMoves) {
@@ -251,9 +260,10 @@ TEST(GcodeFanucDialect, NoOpCodesAreWarnedAndModalMacroCallsRefused) {
 }
 
 TEST(GcodeFanucDialect, Mach3ReadsItsOlderUnitCodesAndTheG92Variables) {
-  const auto r = read("G71 G90 F100\nG0 X10 Y4\nG92 X0 Y0\n#1 = #5211\n#2 = #5212\nG1 X#1 Y#2\nM98 P100\nM30\nO100\n"
-                      "G91 G1 Z-1\nG90\nM99\n",
-                      Dialect::mach3);
+  const auto r = read(
+      "G71 G90 F100\nG0 X10 Y4\nG92 X0 Y0\n#1 = #5211\n#2 = #5212\nG1 X#1 Y#2\nM98 P100\nM30\nO100\n"
+      "G91 G1 Z-1\nG90\nM99\n",
+      Dialect::mach3);
   ASSERT_EQ(r.blocks.size(), 3u);
   EXPECT_EQ(r.blocks[1].end, Vec3(20, 8, 0));  // X10 Y4 in the G92 frame, whose offset is (10, 4)
   EXPECT_EQ(r.blocks[2].end, Vec3(20, 8, -1));
@@ -291,7 +301,8 @@ TEST(GcodeFanucDialect, EveryRefusalNamesTheLineTheFeatureAndTheDialect) {
        "p.nc:2:1: M98 P2: the subprogram runs into the next program O3 on line 6 without M99 (dialect fanuc)"},
   };
   for (const auto& [program, message] : cases) EXPECT_EQ(error_of(program), message) << program;
-  EXPECT_EQ(error_of("G21\nM97 P10\nM30\n", Dialect::haas), "p.nc:2:1: M97 P10: no block N10 in this file (dialect haas)");
+  EXPECT_EQ(error_of("G21\nM97 P10\nM30\n", Dialect::haas),
+            "p.nc:2:1: M97 P10: no block N10 in this file (dialect haas)");
 }
 
 TEST(GcodeFanucDialect, IntegerAxisWordsAreWholeUnitsWithOneWarningForFanuc) {
@@ -306,15 +317,16 @@ TEST(GcodeFanucDialect, IntegerAxisWordsAreWholeUnitsWithOneWarningForFanuc) {
 }
 
 TEST(GcodeFanucDialect, AHaasStyleProgramReads) {
-  const auto r = read("%\nO00001 (PART)\n(HAAS VF-2)\nT1 M06\nG00 G17 G40 G49 G80 G90\nG54 X0. Y0. S1500 M03\n"
-                      "G43 H01 Z25. M08\nG81 G99 X10. Y10. Z-5. R2. F200.\nX20.\nM98 P00002\nG80\nG00 Z25.\n"
-                      "G91 G28 Z0.\nG90\nM05\nM30\n\nO00002 (PATTERN)\nG90 X30. Y10.\nX40.\nM99\n%\n",
-                      Dialect::haas);
+  const auto r = read(
+      "%\nO00001 (PART)\n(HAAS VF-2)\nT1 M06\nG00 G17 G40 G49 G80 G90\nG54 X0. Y0. S1500 M03\n"
+      "G43 H01 Z25. M08\nG81 G99 X10. Y10. Z-5. R2. F200.\nX20.\nM98 P00002\nG80\nG00 Z25.\n"
+      "G91 G28 Z0.\nG90\nM05\nM30\n\nO00002 (PATTERN)\nG90 X30. Y10.\nX40.\nM99\n%\n",
+      Dialect::haas);
   ASSERT_FALSE(r.blocks.empty());
   int holes = 0;
   for (const Block& b : r.blocks)
     if (b.type == BlockType::line && b.end.z() == -5.0) ++holes;
-  EXPECT_EQ(holes, 4);  // X10, X20, and the subprogram's X30, X40 in the still active cycle
+  EXPECT_EQ(holes, 4);                              // X10, X20, and the subprogram's X30, X40 in the still active cycle
   EXPECT_EQ(r.blocks.back().end, Vec3(40, 10, 0));  // G28 Z to the reference position
   EXPECT_TRUE(r.warnings.empty()) << r.warnings[0];
 }

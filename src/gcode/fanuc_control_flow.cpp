@@ -1,11 +1,11 @@
 // The Fanuc family's control flow: GOTO / IF .. GOTO to N numbers, WHILE .. DO m / END m loops,
 // M98 / M97 subprograms and G65 macro calls with M99 returns, by seeking in the streamed program.
-#include "fanuc_front_end.hpp"
-#include "message_format.hpp"
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+
+#include "fanuc_front_end.hpp"
+#include "message_format.hpp"
 
 namespace kontur::gcode::detail {
 namespace {
@@ -55,8 +55,10 @@ void FanucFrontEnd::index_file() {
       long number = 0;
       bool digits = true;
       while (j < raw.size() && std::isalnum(static_cast<unsigned char>(raw[j]))) {
-        if (!std::isdigit(static_cast<unsigned char>(raw[j]))) digits = false;
-        else if (number < 100000000) number = number * 10 + (raw[j] - '0');
+        if (!std::isdigit(static_cast<unsigned char>(raw[j])))
+          digits = false;
+        else if (number < 100000000)
+          number = number * 10 + (raw[j] - '0');
         ++j;
       }
       std::string name(1, 'O');
@@ -67,7 +69,8 @@ void FanucFrontEnd::index_file() {
     }
     if (c == 'N' && i + 1 < raw.size() && std::isdigit(static_cast<unsigned char>(raw[i + 1]))) {
       long n = 0;
-      for (std::size_t j = i + 1; j < raw.size() && std::isdigit(static_cast<unsigned char>(raw[j])) && n < 100000000000L; ++j)
+      for (std::size_t j = i + 1;
+           j < raw.size() && std::isdigit(static_cast<unsigned char>(raw[j])) && n < 100000000000L; ++j)
         n = n * 10 + (raw[j] - '0');
       labels[n].push_back(Pos{at, ln});
     }
@@ -78,7 +81,8 @@ void FanucFrontEnd::index_file() {
 std::pair<std::size_t, std::size_t> FanucFrontEnd::program_extent(std::size_t offset) const {
   std::size_t begin = 0, end = end_offset;
   for (const Program& p : programs) {
-    if (p.header.offset <= offset) begin = p.body.offset;
+    if (p.header.offset <= offset)
+      begin = p.body.offset;
     else {
       end = std::min(end, p.header.offset);
       break;
@@ -102,15 +106,16 @@ void FanucFrontEnd::jump(const Pos& to) {
 void FanucFrontEnd::loop_guard(int column, const std::string& what) {
   if (++loop_iterations > opt.max_loop_iterations)
     diag.fail(column, "loop",
-              fmt::format("{}: more than {} loop iterations, jumps back and calls in the program (endless loop?) (dialect {})",
-                          what, opt.max_loop_iterations, to_string(dialect_)));
+              fmt::format(
+                  "{}: more than {} loop iterations, jumps back and calls in the program (endless loop?) (dialect {})",
+                  what, opt.max_loop_iterations, to_string(dialect_)));
 }
 
 void FanucFrontEnd::goto_label(double n, int column, const std::string& what, std::size_t from, std::size_t scope_at) {
   const long label = whole(n);
   if (label < 0)
-    diag.fail(column, "goto", fmt::format("{}: the block number must be a whole number >= 0 (dialect {})", what,
-                                          to_string(dialect_)));
+    diag.fail(column, "goto",
+              fmt::format("{}: the block number must be a whole number >= 0 (dialect {})", what, to_string(dialect_)));
   index_file();
   const auto [begin, end] = program_extent(scope_at);
   const Pos* target = nullptr;
@@ -151,7 +156,8 @@ void FanucFrontEnd::while_do(std::size_t pos, int column) {
   const double idv = parse_number(nl, p, diag.context());
   if (p < t.size()) fail_at(nl, p, diag.context(), "syntax", fmt::format("'{}': unexpected after DO", excerpt(nl, p)));
   if (idv != 1.0 && idv != 2.0 && idv != 3.0)
-    diag.fail(column, "loop", fmt::format("DO{}: the loop number must be 1, 2 or 3 (dialect {})", num(idv), to_string(dialect_)));
+    diag.fail(column, "loop",
+              fmt::format("DO{}: the loop number must be 1, 2 or 3 (dialect {})", num(idv), to_string(dialect_)));
   const int id = static_cast<int>(idv);
   const std::size_t level = calls.size();
   auto same = std::find_if(loops.begin(), loops.end(), [&](const Loop& l) { return l.id == id && l.level == level; });
@@ -185,9 +191,9 @@ void FanucFrontEnd::skip_to_end(int id, int column, const std::string& what) {
       if (parse_number(nl, p, diag.context()) == static_cast<double>(id)) return;
     }
   }
-  diag.fail_at_line(line_no, column, "loop",
-                    fmt::format("{}: END{} not found before the end of the program (dialect {})", what, id,
-                                to_string(dialect_)));
+  diag.fail_at_line(
+      line_no, column, "loop",
+      fmt::format("{}: END{} not found before the end of the program (dialect {})", what, id, to_string(dialect_)));
 }
 
 void FanucFrontEnd::end_loop(int id, int column) {
@@ -205,17 +211,20 @@ void FanucFrontEnd::call(CallKind kind, const Words& w, int column, const std::a
   const char* d = to_string(dialect_);
   const char* code = kind == CallKind::g65 ? "G65" : kind == CallKind::m98 ? "M98" : "M97";
   if (!w.has('P'))
-    diag.fail(column, "subprogram", fmt::format("{}: P (the {}) missing (dialect {})", code,
-                                                kind == CallKind::m97 ? "block number" : "program number", d));
+    diag.fail(column, "subprogram",
+              fmt::format("{}: P (the {}) missing (dialect {})", code,
+                          kind == CallKind::m97 ? "block number" : "program number", d));
   long number = whole(w.get('P'));
   const std::string what = fmt::format("{} P{}", code, num(w.get('P')));
-  if (number < 0) diag.fail(w.col('P'), "subprogram", fmt::format("{}: P must be a whole number (dialect {})", what, d));
+  if (number < 0)
+    diag.fail(w.col('P'), "subprogram", fmt::format("{}: P must be a whole number (dialect {})", what, d));
   long repeats = 1;
   if (w.has('L')) {
     repeats = whole(w.get('L'));
     if (repeats < 0 || repeats > opt.max_loop_iterations)
-      diag.fail(w.col('L'), "subprogram", fmt::format("{} L{}: the repeat count must be a whole number 0..{} (dialect {})",
-                                                      what, num(w.get('L')), opt.max_loop_iterations, d));
+      diag.fail(w.col('L'), "subprogram",
+                fmt::format("{} L{}: the repeat count must be a whole number 0..{} (dialect {})", what, num(w.get('L')),
+                            opt.max_loop_iterations, d));
   }
   index_file();
   Pos start;
@@ -230,7 +239,8 @@ void FanucFrontEnd::call(CallKind kind, const Words& w, int column, const std::a
         }
       if (!target) target = &it->second.front();
     }
-    if (!target) diag.fail(column, "subprogram", fmt::format("{}: no block N{} in this file (dialect {})", what, number, d));
+    if (!target)
+      diag.fail(column, "subprogram", fmt::format("{}: no block N{} in this file (dialect {})", what, number, d));
     start = *target;
     extent = program_extent(start.offset);
   } else {
@@ -287,12 +297,14 @@ void FanucFrontEnd::return_from_sub(const Words& /*words*/, int column, bool has
 LineOutcome FanucFrontEnd::next_program_reached(int column) {
   if (!calls.empty()) {
     const Call& c = calls.back();
-    diag.fail_at_line(c.line, c.column, "subprogram",
-                      fmt::format("{}: the subprogram runs into the next program {} on line {} without M99 (dialect {})",
-                                  c.what, nl.text.substr(0, 16), line_no, to_string(dialect_)));
+    diag.fail_at_line(
+        c.line, c.column, "subprogram",
+        fmt::format("{}: the subprogram runs into the next program {} on line {} without M99 (dialect {})", c.what,
+                    nl.text.substr(0, 16), line_no, to_string(dialect_)));
   }
-  diag.warn(column, fmt::format("{}: the next program starts here: the main program{} ends without M30 (read as its end)",
-                                nl.text.substr(0, 16), main_name.empty() ? "" : " " + main_name));
+  diag.warn(column,
+            fmt::format("{}: the next program starts here: the main program{} ends without M30 (read as its end)",
+                        nl.text.substr(0, 16), main_name.empty() ? "" : " " + main_name));
   return LineOutcome::program_end;
 }
 

@@ -1,11 +1,11 @@
 // Custom Macro B values (Fanuc, Haas, Mitsubishi, Mach3): numbers, #variables (vacant ones
 // included), [expressions] with Fanuc's operators and precedence, and its functions (degrees).
-#include "fanuc_front_end.hpp"
-
 #include <fmt/format.h>
 
 #include <cmath>
 #include <numbers>
+
+#include "fanuc_front_end.hpp"
 
 namespace kontur::gcode::detail {
 namespace {
@@ -14,7 +14,7 @@ constexpr int max_depth = 64;
 constexpr double deg = std::numbers::pi / 180.0;
 
 class MacroReader {
-public:
+ public:
   MacroReader(const NormalizedLine& line, std::size_t& pos, const LineContext& ctx,
               const std::function<MacroValue(double, std::size_t)>& variable)
       : line_(line), t_(line.text), pos_(pos), ctx_(ctx), variable_(variable) {}
@@ -34,15 +34,19 @@ public:
       while (pos_ < t_.size() && is_digit(t_[pos_])) n = n * 10.0 + (t_[pos_++] - '0');
       return n;
     }
-    if (t_[pos_] == '[') v = bracketed(depth + 1);
-    else if (t_[pos_] == '#') v = variable(depth + 1);
-    else fail(start, "parameter-range", fmt::format("'#{}': a variable number, #variable or [expression] is expected",
-                                                    excerpt(line_, start)));
-    if (v.vacant) fail(start, "parameter-range", fmt::format("'#{}': the variable number is vacant", excerpt(line_, start)));
+    if (t_[pos_] == '[')
+      v = bracketed(depth + 1);
+    else if (t_[pos_] == '#')
+      v = variable(depth + 1);
+    else
+      fail(start, "parameter-range",
+           fmt::format("'#{}': a variable number, #variable or [expression] is expected", excerpt(line_, start)));
+    if (v.vacant)
+      fail(start, "parameter-range", fmt::format("'#{}': the variable number is vacant", excerpt(line_, start)));
     return v.v;
   }
 
-private:
+ private:
   [[noreturn]] void fail(std::size_t at, const char* rule, const std::string& message) const {
     fail_at(line_, at, ctx_, rule, message);
   }
@@ -50,7 +54,10 @@ private:
 
   MacroValue comparison(int depth) {
     const MacroValue a = additive(depth + 1);
-    struct Name { std::string_view text; int op; };
+    struct Name {
+      std::string_view text;
+      int op;
+    };
     static constexpr Name names[] = {{"EQ", 0}, {"NE", 1}, {"GT", 2}, {"GE", 3}, {"LT", 4}, {"LE", 5}};
     for (const auto& n : names) {
       if (!starts(n.text)) continue;
@@ -60,12 +67,24 @@ private:
       // EQ / NE tell vacant from 0; the order comparisons read vacant as 0 (Fanuc)
       const bool same = a.vacant == b.vacant && (a.vacant || a.v == b.v);
       switch (n.op) {
-        case 0: r = same; break;
-        case 1: r = !same; break;
-        case 2: r = a.v > b.v; break;
-        case 3: r = a.v >= b.v; break;
-        case 4: r = a.v < b.v; break;
-        default: r = a.v <= b.v; break;
+        case 0:
+          r = same;
+          break;
+        case 1:
+          r = !same;
+          break;
+        case 2:
+          r = a.v > b.v;
+          break;
+        case 3:
+          r = a.v >= b.v;
+          break;
+        case 4:
+          r = a.v < b.v;
+          break;
+        default:
+          r = a.v <= b.v;
+          break;
       }
       return MacroValue{r ? 1.0 : 0.0, false};
     }
@@ -123,7 +142,8 @@ private:
   }
 
   MacroValue finite(double r, std::size_t at) const {
-    if (!std::isfinite(r)) fail(at, "not-finite", fmt::format("'{}': the result is not a finite number", excerpt(line_, at)));
+    if (!std::isfinite(r))
+      fail(at, "not-finite", fmt::format("'{}': the result is not a finite number", excerpt(line_, at)));
     return MacroValue{r, false};
   }
 
@@ -143,14 +163,16 @@ private:
     if (c == '#') return variable(depth + 1);
     if (is_digit(c) || c == '.') return MacroValue{parse_number(line_, pos_, ctx_), false};
     if (is_letter(c)) return function(depth + 1);
-    fail(pos_, "value-missing", fmt::format("'{}': a number, #variable or [expression] is expected", excerpt(line_, pos_)));
+    fail(pos_, "value-missing",
+         fmt::format("'{}': a number, #variable or [expression] is expected", excerpt(line_, pos_)));
   }
 
   MacroValue bracketed(int depth) {
     const std::size_t open = pos_;
     ++pos_;
     const MacroValue v = comparison(depth + 1);
-    if (pos_ >= t_.size() || t_[pos_] != ']') fail(open, "bracket", fmt::format("'{}': ']' missing", excerpt(line_, open)));
+    if (pos_ >= t_.size() || t_[pos_] != ']')
+      fail(open, "bracket", fmt::format("'{}': ']' missing", excerpt(line_, open)));
     ++pos_;
     return v;
   }
@@ -178,7 +200,8 @@ private:
     while (p < t_.size() && is_letter(t_[p])) ++p;
     const std::string_view name = t_.substr(start, p - start);
     if (p >= t_.size() || t_[p] != '[')
-      fail(start, "value-missing", fmt::format("'{}': a number, #variable or [expression] is expected", excerpt(line_, start)));
+      fail(start, "value-missing",
+           fmt::format("'{}': a number, #variable or [expression] is expected", excerpt(line_, start)));
     pos_ = p + 1;
     const double a = comparison(depth + 1).v;
     double b = 0.0;
@@ -188,7 +211,8 @@ private:
       b = comparison(depth + 1).v;
       two = true;
     }
-    if (pos_ >= t_.size() || t_[pos_] != ']') fail(start, "bracket", fmt::format("'{}': ']' missing", excerpt(line_, start)));
+    if (pos_ >= t_.size() || t_[pos_] != ']')
+      fail(start, "bracket", fmt::format("'{}': ']' missing", excerpt(line_, start)));
     ++pos_;
     if (name == "ATAN" && !two) two = second_argument(depth, b);
     auto domain = [&](bool ok) {
@@ -232,8 +256,9 @@ private:
       r = unary_function(name, a, known, ok);
       if (!known)
         fail(start, "unknown-function",
-             fmt::format("{}[: unknown function (SIN COS TAN ASIN ACOS ATAN SQRT ABS ROUND FIX FUP LN EXP POW ADP BIN BCD)",
-                         name));
+             fmt::format(
+                 "{}[: unknown function (SIN COS TAN ASIN ACOS ATAN SQRT ABS ROUND FIX FUP LN EXP POW ADP BIN BCD)",
+                 name));
       domain(ok);
     }
     if (!std::isfinite(r)) fail(start, "not-finite", fmt::format("{}[{}]: the result is not a finite number", name, a));

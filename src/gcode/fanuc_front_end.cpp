@@ -2,19 +2,24 @@
 // statements and variables, and the words of a block with the codes a Fanuc runs apart from the
 // executor (calls, no-ops, units of P).
 #include "fanuc_front_end.hpp"
-#include "message_format.hpp"
-#include "modal_groups.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstring>
 
+#include "message_format.hpp"
+#include "modal_groups.hpp"
+
 namespace kontur::gcode::detail {
 
 FanucFrontEnd::FanucFrontEnd(const DialectServices& services)
-    : dialect_(services.dialect), input(services.input), diag(services.diagnostics), opt(services.options),
-      executor(services.executor), state(services.state) {
+    : dialect_(services.dialect),
+      input(services.input),
+      diag(services.diagnostics),
+      opt(services.options),
+      executor(services.executor),
+      state(services.state) {
   rules.semicolon_comment = dialect_ == Dialect::mach3;  // Mach3 takes ';' comments; a Fanuc ends the block
   rules.comma = true;
   rules.dialect = to_string(dialect_);
@@ -26,9 +31,7 @@ void FanucFrontEnd::refuse(int column, const std::string& what, const std::strin
   diag.fail(column, "unsupported", fmt::format("{}: {} (dialect {})", what, why, to_string(dialect_)));
 }
 
-double FanucFrontEnd::units() const {
-  return state && state->modal_state().units == Units::inch ? 25.4 : 1.0;
-}
+double FanucFrontEnd::units() const { return state && state->modal_state().units == Units::inch ? 25.4 : 1.0; }
 
 MacroValue FanucFrontEnd::value_at(std::size_t& pos, bool word_value) {
   return parse_macro_value(nl, pos, diag.context(), reader, word_value);
@@ -64,7 +67,8 @@ LineOutcome FanucFrontEnd::read_line(std::string_view raw, Words& words) {
       for (char& ch : word) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
       if (word == "DPRNT" || word == "BPRNT" || word == "POPEN" || word == "PCLOS") {
         seen_block = true;
-        diag.warn(static_cast<int>(i) + 1, fmt::format("{}: output to a port, ignored (it does not move the axes)", word));
+        diag.warn(static_cast<int>(i) + 1,
+                  fmt::format("{}: output to a port, ignored (it does not move the axes)", word));
         return LineOutcome::nothing;
       }
     }
@@ -81,9 +85,10 @@ LineOutcome FanucFrontEnd::read_line(std::string_view raw, Words& words) {
     } else {
       if (!calls.empty()) {
         const Call& c = calls.back();
-        diag.fail_at_line(c.line, c.column, "subprogram",
-                          fmt::format("{}: the subprogram runs into the tape end '%' on line {} without M99 (dialect {})",
-                                      c.what, line_no, to_string(dialect_)));
+        diag.fail_at_line(
+            c.line, c.column, "subprogram",
+            fmt::format("{}: the subprogram runs into the tape end '%' on line {} without M99 (dialect {})", c.what,
+                        line_no, to_string(dialect_)));
       }
       return LineOutcome::program_end;
     }
@@ -127,7 +132,8 @@ bool FanucFrontEnd::statements(std::size_t pos, Words& words) {
   if (starts(pos, "GOTO")) {
     std::size_t p = pos + 4;
     const MacroValue n = value_at(p, false);
-    if (p < t.size()) fail_at(nl, p, diag.context(), "syntax", fmt::format("'{}': unexpected after GOTO", excerpt(nl, p)));
+    if (p < t.size())
+      fail_at(nl, p, diag.context(), "syntax", fmt::format("'{}': unexpected after GOTO", excerpt(nl, p)));
     executor.before_control_flow(c);
     goto_label(n.v, c, fmt::format("GOTO {}", num(n.v)), next_offset, line_offset);
     return false;
@@ -140,7 +146,8 @@ bool FanucFrontEnd::statements(std::size_t pos, Words& words) {
     if (starts(p, "GOTO")) {
       p += 4;
       const MacroValue n = value_at(p, false);
-      if (p < t.size()) fail_at(nl, p, diag.context(), "syntax", fmt::format("'{}': unexpected after GOTO", excerpt(nl, p)));
+      if (p < t.size())
+        fail_at(nl, p, diag.context(), "syntax", fmt::format("'{}': unexpected after GOTO", excerpt(nl, p)));
       if (cond.v != 0.0) {
         executor.before_control_flow(c);
         goto_label(n.v, c, fmt::format("IF .. GOTO {}", num(n.v)), next_offset, line_offset);
@@ -149,12 +156,12 @@ bool FanucFrontEnd::statements(std::size_t pos, Words& words) {
     }
     if (starts(p, "THEN")) {
       p += 4;
-      if (p >= t.size() || t[p] != '#')
-        refuse(col(p), "IF .. THEN", "only an assignment #i = .. may follow THEN");
+      if (p >= t.size() || t[p] != '#') refuse(col(p), "IF .. THEN", "only an assignment #i = .. may follow THEN");
       if (cond.v != 0.0) {
         assignment(p);
         if (p < t.size())
-          fail_at(nl, p, diag.context(), "syntax", fmt::format("'{}': unexpected after IF .. THEN #i = ..", excerpt(nl, p)));
+          fail_at(nl, p, diag.context(), "syntax",
+                  fmt::format("'{}': unexpected after IF .. THEN #i = ..", excerpt(nl, p)));
       }
       return false;
     }
@@ -168,7 +175,8 @@ bool FanucFrontEnd::statements(std::size_t pos, Words& words) {
   if (starts(pos, "END") && pos + 3 < t.size() && is_digit(t[pos + 3])) {
     std::size_t p = pos + 3;
     const double id = parse_number(nl, p, diag.context());
-    if (p < t.size()) fail_at(nl, p, diag.context(), "syntax", fmt::format("'{}': unexpected after END", excerpt(nl, p)));
+    if (p < t.size())
+      fail_at(nl, p, diag.context(), "syntax", fmt::format("'{}': unexpected after END", excerpt(nl, p)));
     executor.before_control_flow(c);
     end_loop(static_cast<int>(id), c);
     return false;
@@ -239,23 +247,40 @@ MacroValue FanucFrontEnd::read_var(double index, std::size_t at) {
     if (i >= 4001 && i <= 4022) {
       const bool cycle = is_canned_cycle(m.motion_g10);
       switch (i) {
-        case 4001: return num_of(state->group01_code());
-        case 4002: return num_of(m.plane == Plane::xy ? 17 : m.plane == Plane::zx ? 18 : 19);
-        case 4003: return num_of(m.distance == DistanceMode::absolute ? 90 : 91);
-        case 4005: return num_of(m.feed_mode == FeedMode::inverse_time ? 93 : 94);
-        case 4006: return num_of(m.units == Units::inch ? 20 : 21);
-        case 4007: return num_of(40);
-        case 4008: return num_of(m.tool_length_offset ? 43 : 49);
-        case 4009: return num_of(cycle ? m.motion_g10 / 10 : 80);
-        case 4010: return num_of(m.retract == RetractMode::initial_z ? 98 : 99);
-        case 4011: return num_of(50);
-        case 4012: return num_of(67);
-        case 4013: return num_of(97);
-        case 4014: return num_of(m.work_offset <= 6 ? 53 + m.work_offset : 54.1);
-        case 4015: return num_of(m.path_control == PathControl::blend ? 64 : 61);
-        case 4016: return num_of(69);
-        case 4017: return num_of(15);
-        default: return num_of(0.0);
+        case 4001:
+          return num_of(state->group01_code());
+        case 4002:
+          return num_of(m.plane == Plane::xy ? 17 : m.plane == Plane::zx ? 18 : 19);
+        case 4003:
+          return num_of(m.distance == DistanceMode::absolute ? 90 : 91);
+        case 4005:
+          return num_of(m.feed_mode == FeedMode::inverse_time ? 93 : 94);
+        case 4006:
+          return num_of(m.units == Units::inch ? 20 : 21);
+        case 4007:
+          return num_of(40);
+        case 4008:
+          return num_of(m.tool_length_offset ? 43 : 49);
+        case 4009:
+          return num_of(cycle ? m.motion_g10 / 10 : 80);
+        case 4010:
+          return num_of(m.retract == RetractMode::initial_z ? 98 : 99);
+        case 4011:
+          return num_of(50);
+        case 4012:
+          return num_of(67);
+        case 4013:
+          return num_of(97);
+        case 4014:
+          return num_of(m.work_offset <= 6 ? 53 + m.work_offset : 54.1);
+        case 4015:
+          return num_of(m.path_control == PathControl::blend ? 64 : 61);
+        case 4016:
+          return num_of(69);
+        case 4017:
+          return num_of(15);
+        default:
+          return num_of(0.0);
       }
     }
   }
@@ -283,8 +308,8 @@ void FanucFrontEnd::write_var(double index, const MacroValue& value, std::size_t
   if (i == 3000) {
     const std::string message = comment_after(col);
     diag.fail(col, "macro-alarm",
-              fmt::format("{}: the program raises macro alarm {}{} (dialect {})", what, 3000 + static_cast<int>(value.v),
-                          message.empty() ? "" : " " + message, to_string(dialect_)));
+              fmt::format("{}: the program raises macro alarm {}{} (dialect {})", what,
+                          3000 + static_cast<int>(value.v), message.empty() ? "" : " " + message, to_string(dialect_)));
   }
   if (i == 3006) {
     const std::string message = comment_after(col);
@@ -322,14 +347,20 @@ void FanucFrontEnd::parse_words(std::size_t pos, Words& w) {
         refuse(col, std::string(",") + t[pos + 1], "chamfers and corner roundings between blocks are not supported");
       fail_at(nl, start, ctx, "syntax", fmt::format("'{}': unexpected ','", excerpt(nl, start)));
     }
-    if (c == '#') fail_at(nl, start, ctx, "syntax", fmt::format("'{}': an assignment must come before the words of the block", excerpt(nl, start)));
+    if (c == '#')
+      fail_at(nl, start, ctx, "syntax",
+              fmt::format("'{}': an assignment must come before the words of the block", excerpt(nl, start)));
     if (!is_letter(c)) {
       if (is_digit(c) || c == '.' || c == '-' || c == '+')
         fail_at(nl, start, ctx, "syntax", fmt::format("'{}': a number without a word letter", excerpt(nl, start)));
       fail_at(nl, start, ctx, "syntax", fmt::format("'{}': unexpected character '{}'", excerpt(nl, start), c));
     }
-    if (c == 'N') fail_at(nl, start, ctx, "n-word", fmt::format("'{}': N number not at the start of the block", excerpt(nl, start)));
-    if (c == 'O') fail_at(nl, start, ctx, "o-word", fmt::format("'{}': a program number must stand on its own line", excerpt(nl, start)));
+    if (c == 'N')
+      fail_at(nl, start, ctx, "n-word",
+              fmt::format("'{}': N number not at the start of the block", excerpt(nl, start)));
+    if (c == 'O')
+      fail_at(nl, start, ctx, "o-word",
+              fmt::format("'{}': a program number must stand on its own line", excerpt(nl, start)));
     ++pos;
     if (pos < t.size() && is_letter(t[pos]))
       fail_at(nl, start, ctx, "syntax", fmt::format("'{}': {} without a value", excerpt(nl, start), c));
@@ -341,20 +372,22 @@ void FanucFrontEnd::parse_words(std::size_t pos, Words& w) {
               fmt::format("'{}': arithmetic in a word needs brackets (dialect {} reads {}#i or {}[expression])",
                           excerpt(nl, start), to_string(dialect_), c, c));
     if (v.vacant) continue;  // a vacant variable: the word is omitted (Fanuc)
-    const bool integer = literal && word.find('.') == std::string_view::npos && word.find('#') == std::string_view::npos &&
-                         word.find('[') == std::string_view::npos;
+    const bool integer = literal && word.find('.') == std::string_view::npos &&
+                         word.find('#') == std::string_view::npos && word.find('[') == std::string_view::npos;
     if (c == 'G' || c == 'M') {
       const double scaled = c == 'G' ? v.v * 10.0 : v.v;
       const double r = std::round(scaled);
       if (std::abs(scaled - r) > integer_tolerance * 10.0 || r < 0.0 || r > 100000.0)
-        fail_at(nl, start, ctx, c == 'G' ? "unknown-g-code" : "unknown-m-code", fmt::format("{}: unknown {} code {}{}", word, c, c, num(v.v)));
+        fail_at(nl, start, ctx, c == 'G' ? "unknown-g-code" : "unknown-m-code",
+                fmt::format("{}: unknown {} code {}{}", word, c, c, num(v.v)));
       const bool leading_zero = word.size() > 2 && word[1] == '0' && is_digit(word[2]);
       if (c == 'G' ? !w.add_g(static_cast<int>(r), col, leading_zero) : !w.add_m(static_cast<int>(r), col))
         fail_at(nl, start, ctx, "too-many-words", fmt::format("{}: too many {} codes in a block", word, c));
       continue;
     }
     if (w.has(c))
-      fail_at(nl, start, ctx, "word-twice", fmt::format("{}: word given twice in the block (first at column {})", word, w.col(c)));
+      fail_at(nl, start, ctx, "word-twice",
+              fmt::format("{}: word given twice in the block (first at column {})", word, w.col(c)));
     w.set(c, v.v, col);
     if (integer) integer_literal |= 1u << static_cast<unsigned>(c - 'A');
   }
@@ -390,7 +423,8 @@ void FanucFrontEnd::dialect_codes(Words& w) {
     const int col = w.g_column[static_cast<std::size_t>(i)];
     const std::string name = g_name(g, w.g_leading_zero[static_cast<std::size_t>(i)] != 0);
     if (g == 51 && w.has('Q') && dialect_ != Dialect::mach3) {  // G05.1 Q1: AI contour control
-      diag.warn(col, fmt::format("{} Q{}: look-ahead / AI contour control is the planner's business: read as no code", name, num(w.get('Q'))));
+      diag.warn(col, fmt::format("{} Q{}: look-ahead / AI contour control is the planner's business: read as no code",
+                                 name, num(w.get('Q'))));
       drop("Q");
       drop_g(i);
       continue;
@@ -428,11 +462,12 @@ void FanucFrontEnd::dialect_codes(Words& w) {
       continue;
     }
     if (g == 680 || g == 510 || g == 511 || g == 160 || g == 310)
-      refuse(col, name, g == 680   ? "coordinate system rotation is not supported"
-                        : g == 510 ? "scaling is not supported"
-                        : g == 511 ? "programmable mirror image is not supported"
-                        : g == 160 ? "polar coordinate programming is not supported"
-                                   : "the skip function (probing) is not supported");
+      refuse(col, name,
+             g == 680   ? "coordinate system rotation is not supported"
+             : g == 510 ? "scaling is not supported"
+             : g == 511 ? "programmable mirror image is not supported"
+             : g == 160 ? "polar coordinate programming is not supported"
+                        : "the skip function (probing) is not supported");
     if (g == 100 && w.has('L') && w.get('L') == 20.0 && dialect_ != Dialect::mach3) {  // G54.1 Pn offsets
       diag.warn(col, fmt::format("{} L20: the additional work offsets (G54.1 Pn) are not modelled: ignored", name));
       drop("LPRXYZ");
@@ -455,9 +490,10 @@ void FanucFrontEnd::dialect_codes(Words& w) {
       continue;
     }
     if (g == 760 || g == 870 || g == 880 || g == 740)
-      refuse(col, name, g == 740 ? "the left-hand tapping cycle is not supported"
-                                 : g == 760 ? "the fine boring cycle (oriented spindle stop and shift) is not supported"
-                                            : "the back boring cycle is not supported");
+      refuse(col, name,
+             g == 740   ? "the left-hand tapping cycle is not supported"
+             : g == 760 ? "the fine boring cycle (oriented spindle stop and shift) is not supported"
+                        : "the back boring cycle is not supported");
     if (dialect_ == Dialect::mach3 && (g == 700 || g == 710)) {  // Mach3's older inch / mm codes
       w.g[static_cast<std::size_t>(i)] = g == 700 ? 200 : 210;
       ++i;
@@ -502,15 +538,17 @@ void FanucFrontEnd::dialect_codes(Words& w) {
       if (c == 'K' && (cycle_block || (state && is_canned_cycle(state->modal_state().motion_g10)))) continue;
       decimal_warned = true;
       const double v = w.get(c);
-      diag.warn(w.col(c), fmt::format("{}{}: written without a decimal point, read as {} {}; a {} with parameter 3401#0 "
-                                      "DPI=0 reads it as {} least increments ({} {}) (warned once)",
-                                      c, num(v), num(v), units() == 1.0 ? "mm" : "inch", d, num(v),
-                                      num(v * (units() == 1.0 ? 0.001 : 0.0001)), units() == 1.0 ? "mm" : "inch"));
+      diag.warn(w.col(c),
+                fmt::format("{}{}: written without a decimal point, read as {} {}; a {} with parameter 3401#0 "
+                            "DPI=0 reads it as {} least increments ({} {}) (warned once)",
+                            c, num(v), num(v), units() == 1.0 ? "mm" : "inch", d, num(v),
+                            num(v * (units() == 1.0 ? 0.001 : 0.0001)), units() == 1.0 ? "mm" : "inch"));
       break;
     }
   }
   switch (action) {
-    case Action::none: return;
+    case Action::none:
+      return;
     case Action::m99: {
       const bool has_p = w.has('P');
       const double p = w.get('P');
@@ -534,12 +572,10 @@ void FanucFrontEnd::dialect_codes(Words& w) {
       return;
     }
     case Action::g65: {
-      static constexpr std::array<std::pair<char, int>, 21> arg_of = {{{'A', 1},  {'B', 2},  {'C', 3},  {'I', 4},
-                                                                       {'J', 5},  {'K', 6},  {'D', 7},  {'E', 8},
-                                                                       {'F', 9},  {'H', 11}, {'M', 13}, {'Q', 17},
-                                                                       {'R', 18}, {'S', 19}, {'T', 20}, {'U', 21},
-                                                                       {'V', 22}, {'W', 23}, {'X', 24}, {'Y', 25},
-                                                                       {'Z', 26}}};
+      static constexpr std::array<std::pair<char, int>, 21> arg_of = {
+          {{'A', 1},  {'B', 2},  {'C', 3},  {'I', 4},  {'J', 5},  {'K', 6},  {'D', 7},
+           {'E', 8},  {'F', 9},  {'H', 11}, {'M', 13}, {'Q', 17}, {'R', 18}, {'S', 19},
+           {'T', 20}, {'U', 21}, {'V', 22}, {'W', 23}, {'X', 24}, {'Y', 25}, {'Z', 26}}};
       std::array<MacroValue, 34> args{};
       for (auto& a : args) a.vacant = true;
       for (const auto& [letter, index] : arg_of)

@@ -8,9 +8,6 @@
 // G65 macro calls (fanuc_control_flow.cpp). Like the LinuxCNC front end it streams: a jump seeks to a
 // line start; the file is indexed (program numbers, N numbers) once, the first time control flow
 // needs it.
-#include "dialect_front_end.hpp"
-#include "linuxcnc_lexer.hpp"
-
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -18,6 +15,9 @@
 #include <map>
 #include <string>
 #include <vector>
+
+#include "dialect_front_end.hpp"
+#include "linuxcnc_lexer.hpp"
 
 namespace kontur::gcode::detail {
 
@@ -31,14 +31,13 @@ struct MacroValue {
 /// then EQ NE GT GE LT LE) from text[pos]; `variable(index, at)` gives #index. Advances pos.
 /// `bracketed_only`: the value of a word (a number, #variable, [expression] or a function, signed).
 MacroValue parse_macro_value(const NormalizedLine& line, std::size_t& pos, const LineContext& ctx,
-                             const std::function<MacroValue(double index, std::size_t at)>& variable,
-                             bool word_value);
+                             const std::function<MacroValue(double index, std::size_t at)>& variable, bool word_value);
 /// The variable number after '#' at text[pos] (digits, [expression] or another #variable); advances pos.
 double parse_macro_index(const NormalizedLine& line, std::size_t& pos, const LineContext& ctx,
                          const std::function<MacroValue(double index, std::size_t at)>& variable);
 
 class FanucFrontEnd final : public DialectFrontEnd {
-public:
+ public:
   explicit FanucFrontEnd(const DialectServices& services);
 
   [[nodiscard]] Dialect dialect() const noexcept override { return dialect_; }
@@ -46,7 +45,7 @@ public:
   void at_end_of_input() override;
   [[nodiscard]] bool program_marks_its_end() const noexcept override { return tape; }
 
-private:
+ private:
   Dialect dialect_;
   ProgramInput& input;
   Diagnostics& diag;
@@ -56,11 +55,11 @@ private:
   NormalizeRules rules;
 
   NormalizedLine nl;
-  std::string raw_line;       // the line being read (for the messages of #3000 / #3006)
-  bool tape = false;          // the file started with '%'
-  bool seen_block = false;    // a line with content was read
+  std::string raw_line;     // the line being read (for the messages of #3000 / #3006)
+  bool tape = false;        // the file started with '%'
+  bool seen_block = false;  // a line with content was read
   bool main_header_seen = false;
-  std::string main_name;      // "O1234", for messages
+  std::string main_name;  // "O1234", for messages
   bool decimal_warned = false;
   bool tool_offset_warned = false;
 
@@ -105,14 +104,14 @@ private:
     long line = 0;           // its number
   };
   struct Program {
-    long number;          // O number (-1: a name)
-    std::string name;     // "O1234"
-    Pos header;           // the O line
-    Pos body;             // the line after it
+    long number;       // O number (-1: a name)
+    std::string name;  // "O1234"
+    Pos header;        // the O line
+    Pos body;          // the line after it
   };
   bool indexed = false;
-  std::vector<Program> programs;                     // in file order
-  std::map<long, std::vector<Pos>> labels;           // N number -> lines, in file order
+  std::vector<Program> programs;                          // in file order
+  std::map<long, std::vector<Pos>> labels;                // N number -> lines, in file order
   std::size_t end_offset = static_cast<std::size_t>(-1);  // a closing '%'
   void index_file();
   // The extent [begin, end) of the program holding `offset`.
@@ -122,19 +121,19 @@ private:
   enum class CallKind { m98, m97, g65 };
   struct Call {
     CallKind kind;
-    std::string what;     // "M98 P1000", for messages
-    Pos start;            // the subprogram's first line
-    Pos ret;              // the line after the call
+    std::string what;  // "M98 P1000", for messages
+    Pos start;         // the subprogram's first line
+    Pos ret;           // the line after the call
     long repeats_left;
     std::size_t scope_begin, scope_end;  // the program GOTO searches in
-    long line;            // of the call
+    long line;                           // of the call
     int column;
-    std::size_t loops;    // loops open at the call
+    std::size_t loops;  // loops open at the call
   };
   std::vector<Call> calls;
   struct Loop {
     int id;
-    Pos head;   // the WHILE line
+    Pos head;  // the WHILE line
     std::size_t level;
   };
   std::vector<Loop> loops;
