@@ -228,7 +228,6 @@ void FanucFrontEnd::call(CallKind kind, const Words& w, int column, const std::a
   }
   index_file();
   Pos start;
-  std::pair<std::size_t, std::size_t> extent;
   if (kind == CallKind::m97) {
     const Pos* target = nullptr;
     if (const auto it = labels.find(number); it != labels.end()) {
@@ -242,7 +241,6 @@ void FanucFrontEnd::call(CallKind kind, const Words& w, int column, const std::a
     if (!target)
       diag.fail(column, "subprogram", fmt::format("{}: no block N{} in this file (dialect {})", what, number, d));
     start = *target;
-    extent = program_extent(start.offset);
   } else {
     const Program* prog = find_program(number);
     // Fanuc's older form M98 P0030 1000: the four digits before the last four are the repeat count
@@ -259,14 +257,12 @@ void FanucFrontEnd::call(CallKind kind, const Words& w, int column, const std::a
                             "subprogram after the main program's end",
                             what, number, d));
     start = prog->body;
-    extent = program_extent(prog->header.offset);
   }
   if (repeats == 0) return;
   if (calls.size() >= 16)
     diag.fail(column, "subprogram", fmt::format("{}: calls nested more than 16 deep (dialect {})", what, d));
   loop_guard(column, what);
-  calls.push_back(Call{kind, what, start, Pos{next_offset, line_no + 1}, repeats - 1, extent.first, extent.second,
-                       line_no, column, loops.size()});
+  calls.push_back(Call{kind, what, start, Pos{next_offset, line_no + 1}, repeats - 1, line_no, column, loops.size()});
   if (kind == CallKind::g65) {
     locals.emplace_back();
     for (std::size_t i = 1; i < 34; ++i)
@@ -275,7 +271,7 @@ void FanucFrontEnd::call(CallKind kind, const Words& w, int column, const std::a
   jump(start);
 }
 
-void FanucFrontEnd::return_from_sub(const Words& /*words*/, int column, bool has_p, double p) {
+void FanucFrontEnd::return_from_sub(int column, bool has_p, double p) {
   Call& c = calls.back();
   loops.resize(std::min(loops.size(), c.loops));
   if (c.repeats_left > 0) {

@@ -98,7 +98,6 @@ LineOutcome FanucFrontEnd::read_line(std::string_view raw, Words& words) {
     if (!main_header_seen && !seen_block) {
       main_header_seen = true;
       main_name = nl.text.substr(0, 16);
-      main_scope_begin = next_offset;
       seen_block = true;
       return LineOutcome::nothing;
     }
@@ -560,7 +559,7 @@ void FanucFrontEnd::dialect_codes(Words& w) {
         w.add_m(30, action_col);
         return;
       }
-      return_from_sub(w, action_col, has_p, p);
+      return_from_sub(action_col, has_p, p);
       return;
     }
     case Action::m98:

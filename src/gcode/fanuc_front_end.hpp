@@ -29,7 +29,8 @@ struct MacroValue {
 
 /// Reads a Macro B expression (Fanuc's precedence: functions, then * / AND MOD, then + - OR XOR,
 /// then EQ NE GT GE LT LE) from text[pos]; `variable(index, at)` gives #index. Advances pos.
-/// `bracketed_only`: the value of a word (a number, #variable, [expression] or a function, signed).
+/// `word_value`: only what may follow a word's letter (a number, #variable, [expression] or a
+/// function, signed), so that `X#1+2` stops after `#1`.
 MacroValue parse_macro_value(const NormalizedLine& line, std::size_t& pos, const LineContext& ctx,
                              const std::function<MacroValue(double index, std::size_t at)>& variable, bool word_value);
 /// The variable number after '#' at text[pos] (digits, [expression] or another #variable); advances pos.
@@ -125,8 +126,7 @@ class FanucFrontEnd final : public DialectFrontEnd {
     Pos start;         // the subprogram's first line
     Pos ret;           // the line after the call
     long repeats_left;
-    std::size_t scope_begin, scope_end;  // the program GOTO searches in
-    long line;                           // of the call
+    long line;  // of the call
     int column;
     std::size_t loops;  // loops open at the call
   };
@@ -138,7 +138,6 @@ class FanucFrontEnd final : public DialectFrontEnd {
   };
   std::vector<Loop> loops;
   long loop_iterations = 0;
-  std::size_t main_scope_begin = 0;
 
   void jump(const Pos& to);
   void loop_guard(int column, const std::string& what);
@@ -149,7 +148,7 @@ class FanucFrontEnd final : public DialectFrontEnd {
   void end_loop(int id, int column);
   void skip_to_end(int id, int column, const std::string& what);
   void call(CallKind kind, const Words& words, int column, const std::array<MacroValue, 34>* args);
-  void return_from_sub(const Words& words, int column, bool has_p, double p);
+  void return_from_sub(int column, bool has_p, double p);
   LineOutcome next_program_reached(int column);
 };
 
