@@ -199,6 +199,18 @@ TEST(GcodeFanucDialect, G91G28Z0GoesStraightUpToTheReferencePosition) {
   EXPECT_EQ(r.blocks[2].end, Vec3(10, 20, 0));  // Z to the reference position, X and Y stay
 }
 
+TEST(GcodeFanucDialect, AMotionCodeBesideG28OnlySetsTheMode) {
+  // 'G00 G91 G28 Z0': G28 moves; G00 is the mode of the blocks after it
+  const auto r = read("G21 G90 F100.\nG1 X5. Y5. Z-3.\nG00 G91 G28 Z0\nG90 X10.\nM30\n");
+  ASSERT_EQ(r.blocks.size(), 4u);
+  EXPECT_EQ(r.blocks[2].end, Vec3(5, 5, 0));
+  EXPECT_EQ(r.blocks[3].type, BlockType::rapid);
+  EXPECT_EQ(r.blocks[3].end, Vec3(10, 5, 0));
+  // a block with its own motion code keeps it
+  const auto s = read("G21 G90 F100.\nG00 G91 G28 Z0\nG90 G1 X10.\nM30\n");
+  EXPECT_EQ(s.blocks.back().type, BlockType::line);
+}
+
 TEST(GcodeFanucDialect, CyclesG84G85G86G89ExpandIntoTheirMoves) {
   const std::string head = "G21 G90 G17 G98 F100.\nG0 X0 Y0 Z10.\n";
   struct Case {
