@@ -1,4 +1,6 @@
-// Canned drilling cycles G73, G81, G82, G83 with G98 / G99, expanded into rapid and feed moves.
+// Canned drilling cycles G73, G81, G82, G83 (and in the Fanuc family G84 tapping, G85 boring with
+// feed out, G86 boring with rapid out, G89 boring with dwell and feed out) with G98 / G99, expanded
+// into rapid and feed moves.
 #include "executor.hpp"
 
 #include <algorithm>
@@ -34,11 +36,18 @@ void Executor::cycle(int motion, int col) {
     fail(w->has('Q') ? w->col('Q') : col, "cycle-peck", fmt::format("{}: Q (peck depth) missing or not > 0", word));
   if (cycle_p < 0.0) fail(w->col('P'), "cycle-words", fmt::format("{} P{}: dwell must be >= 0", word, num(cycle_p)));
   int repeats = 1;
-  if (w->has('L')) {
-    const double l = w->get('L');
+  // Fanuc 0i / 30i write the repeat count as K (older controls: L)
+  const char repeat_letter = rules_.fanuc_cycles && !w->has('L') && w->has('K') ? 'K' : 'L';
+  if (w->has(repeat_letter)) {
+    const double l = w->get(repeat_letter);
     if (l != std::floor(l) || l < 0.0 || l > tolerances::gcode_max_cycle_repeats)
-      fail(w->col('L'), "cycle-repeat", fmt::format("{} L{}: repeats must be an integer 0..{}", word, num(l), tolerances::gcode_max_cycle_repeats));
+      fail(w->col(repeat_letter), "cycle-repeat", fmt::format("{} {}{}: repeats must be an integer 0..{}", word, repeat_letter, num(l), tolerances::gcode_max_cycle_repeats));
     repeats = static_cast<int>(l);
+  }
+  if (motion == 840 && !tapping_warned) {
+    tapping_warned = true;
+    warn(col, "G84: tapping is read as a feed to the bottom and a feed back to R at F; the spindle's "
+              "synchronisation and reversal are not modelled (warned once)");
   }
   const bool incremental = modal.distance == DistanceMode::incremental;
   const double r_plane = incremental ? pos.z() + cycle_r : cycle_r;
@@ -73,15 +82,18 @@ void Executor::cycle(int motion, int col) {
       }
     rapid_to(Vec3(hole.x(), hole.y(), pos.z()));
     rapid_to(Vec3(hole.x(), hole.y(), r_plane));
-    if (motion == 810 || motion == 820) {
+    if (motion != 730 && motion != 830) {
       feed_to(Vec3(hole.x(), hole.y(), bottom));
-      if (motion == 820) {
+      // G82, G89 dwell at the bottom; G84 too when P is given
+      if (motion == 820 || motion == 890 || (motion == 840 && cycle_p > 0.0)) {
         Block b = make_block(BlockType::dwell, col);
         b.start = b.end = to_machine(pos);
         b.dwell_s = cycle_p;
         b.canned_cycle = cycle_number;
         emit(std::move(b));
       }
+      // G84, G85, G89 feed back out to R (G86, like G81 and G82, leaves at rapid)
+      if (motion == 840 || motion == 850 || motion == 890) feed_to(Vec3(hole.x(), hole.y(), r_plane));
     } else {
       double depth = r_plane;
       while (depth > bottom) {

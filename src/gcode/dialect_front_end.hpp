@@ -42,9 +42,37 @@ struct DialectRules {
   /// A motion code (G0..G3) beside G28 / G30 / G92 / G10 only sets the motion mode; the block's axis
   /// words are the non-modal code's (Fanuc's "G0 G91 G28 Z0"). LinuxCNC refuses the block.
   bool motion_code_beside_nonmodal = false;
+  /// The Fanuc family's drilling cycles G84 (tapping, as feed in and out), G85, G86 and G89 are
+  /// expanded, and K in a cycle block is its repeat count (L); LinuxCNC refuses G84-G89.
+  bool fanuc_cycles = false;
 };
 /// The rules of `dialect` (dialect_registry.cpp).
 [[nodiscard]] DialectRules rules_of(Dialect dialect) noexcept;
+
+/// What a dialect's system variables read of the executor, and the few it writes (Fanuc's #4001..,
+/// #5001.., #5221..). Lengths in [mm] (the front end converts to the program's units).
+class ExecutorState {
+public:
+  /// The modal state now.
+  [[nodiscard]] virtual const ModalState& modal_state() const noexcept = 0;
+  /// The end point of the last block, in program coordinates [mm].
+  [[nodiscard]] virtual const Vec3& position() const noexcept = 0;
+  /// The same point in machine coordinates [mm].
+  [[nodiscard]] virtual Vec3 machine_position() const = 0;
+  /// The last G0 / G1 / G2 / G3 (0..3; 0 before any), Fanuc's group 01 apart from the cycles.
+  [[nodiscard]] virtual int group01_code() const noexcept = 0;
+  /// The feed in effect [mm/min].
+  [[nodiscard]] virtual double feed_rate() const noexcept = 0;
+  /// The offset of work system `system` (1 = G54 .. 9 = G59.3) [mm].
+  [[nodiscard]] virtual Vec3 work_offset(int system) const = 0;
+  /// The G92 offset [mm] (LinuxCNC's and Mach3's #5211-#5213).
+  [[nodiscard]] virtual Vec3 g92_offset() const = 0;
+  /// Sets one axis (0 X, 1 Y, 2 Z) of the offset of work system `system` [mm], as G10 L2 does.
+  virtual void set_work_offset(int system, int axis, double mm) = 0;
+
+protected:
+  ~ExecutorState() = default;
+};
 
 /// Everything a front end works with; owned by the Reader and outliving the front end.
 struct DialectServices {
@@ -54,6 +82,7 @@ struct DialectServices {
   Diagnostics& diagnostics;       ///< file, line, errors and warnings
   const ReaderOptions& options;   ///< block delete, loop limit
   ControlFlowBarrier& executor;   ///< told before control flow runs
+  ExecutorState* state = nullptr; ///< the executor's state, for system variables (Fanuc)
 };
 
 /// What one line of the program turned into.

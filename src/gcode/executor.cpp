@@ -28,7 +28,7 @@ void Executor::execute(const Words& words) {
     return;
   }
 
-  const BlockCodes codes = classify_codes(*w, diag);
+  const BlockCodes codes = classify_codes(*w, diag, rules_.fanuc_cycles);
   check_words_allowed(codes);
 
   set_feed_mode(codes);
@@ -314,7 +314,7 @@ void Executor::warn_unused_words(int motion, int nonmodal, int path, int tool_le
     if (motion == 62) add("KRPQ");
     if (cycle) add("RZPQL");
   }
-  if (cycle) add("RPQL");  // sticky cycle words on a block without a hole
+  if (cycle) add(rules_.fanuc_cycles ? "RPQLK" : "RPQL");  // sticky cycle words on a block without a hole
   if (nonmodal == 40) add("P");
   if (nonmodal == 100) add("LPR");
   if (path == 640) add("PQ");
@@ -340,7 +340,7 @@ void Executor::move(int motion, int col, bool machine_coordinates, int motion_wo
     case motion_cip: cip(to, col); return;
     case motion_ct: tangent_arc(to, col); return;
     case motion_conic: conic(to, col); return;
-    case 730: case 810: case 820: case 830: cycle(motion, col); return;
+    case 730: case 810: case 820: case 830: case 840: case 850: case 860: case 890: cycle(motion, col); return;
     default: break;
   }
   fail(col, "internal", fmt::format("motion mode {} not handled", g_name(motion)));

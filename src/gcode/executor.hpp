@@ -43,7 +43,7 @@ inline PlaneAxes plane_axes(Plane p) {
 }
 inline Vec3 unit(int axis) { return Vec3::Unit(axis); }
 
-class Executor final : public ControlFlowBarrier {
+class Executor final : public ControlFlowBarrier, public ExecutorState {
 public:
   /// Reports through `diagnostics`; G28.1 / G30.1 store and G28 / G30 read the home positions in
   /// `parameters` #5161-#5163 and #5181-#5183.
@@ -68,11 +68,24 @@ public:
   /// The blocks made so far and not yet taken (the caller clears it).
   [[nodiscard]] std::vector<Block>& blocks() noexcept { return queue; }
   /// The modal state now.
-  [[nodiscard]] const ModalState& modal_state() const noexcept { return modal; }
+  [[nodiscard]] const ModalState& modal_state() const noexcept override { return modal; }
   /// The current position in program coordinates [mm].
-  [[nodiscard]] const Vec3& position() const noexcept { return pos; }
+  [[nodiscard]] const Vec3& position() const noexcept override { return pos; }
   /// The current position in machine coordinates [mm].
-  [[nodiscard]] Vec3 machine_position() const { return to_machine(pos); }
+  [[nodiscard]] Vec3 machine_position() const override { return to_machine(pos); }
+  [[nodiscard]] int group01_code() const noexcept override { return group01_motion > 0 ? group01_motion / 10 : 0; }
+  [[nodiscard]] double feed_rate() const noexcept override { return feed_mm_per_min; }
+  [[nodiscard]] Vec3 work_offset(int system) const override {
+    // to_machine(p) = R (p + g92) + offset and offset_placing(0, p) = -R (p + g92)
+    return frames.to_machine(Vec3::Zero(), system) + frames.offset_placing(Vec3::Zero(), Vec3::Zero(), system);
+  }
+  // work system 0 has no offset and no rotation: what remains is the G92 offset
+  [[nodiscard]] Vec3 g92_offset() const override { return frames.to_machine(Vec3::Zero(), 0); }
+  void set_work_offset(int system, int axis, double mm) override {
+    const Vec3 m = to_machine(pos);
+    frames.set_offset(system, axis, mm);
+    if (system == modal.work_offset) pos = to_program(m);
+  }
 
 private:
   // ================================================================ state
@@ -90,6 +103,7 @@ private:
   bool ended_ = false;
   bool program_end_seen_ = false;
   bool q_warned = false;
+  bool tapping_warned = false;  // G84 read as feed in and out (warned once)
   std::set<int> warned_m_codes;  // M codes ignored so far (each warned once)
 
   // splines
@@ -297,7 +311,8 @@ private:
   void cip(const Vec3& to, int col);
   void conic(const Vec3& to, int col);
 
-  // ---- canned cycles G73, G81, G82, G83 (XY plane), expanded into moves
+  // ---- canned cycles G73, G81, G82, G83 (and with DialectRules::fanuc_cycles G84, G85, G86, G89;
+  // XY plane), expanded into moves
   void cycle(int motion, int col);
 
   // ---- the programmable frame (programmable_frame.cpp): a block of a FrameOp alone

@@ -43,25 +43,7 @@ private:
     fail_at(line_, at, ctx_, rule, message);
   }
 
-  double number() {
-    const std::size_t start = pos_;
-    std::size_t p = pos_;
-    int dots = 0, digits = 0;
-    while (p < t_.size() && (is_digit(t_[p]) || t_[p] == '.')) {
-      if (t_[p] == '.') ++dots; else ++digits;
-      ++p;
-    }
-    if (dots > 1 || digits == 0)
-      fail(start, "bad-number", fmt::format("'{}': not a number", t_.substr(start, p - start)));
-    double v = 0.0;
-    const char* first = t_.data() + start;
-    // from_chars does not accept a leading '.'; it does accept "5." and ".5" with chars_format::fixed
-    const auto r = std::from_chars(first, t_.data() + p, v, std::chars_format::fixed);
-    if (r.ec != std::errc() || r.ptr != t_.data() + p || !std::isfinite(v))
-      fail(start, "bad-number", fmt::format("'{}': not a number", t_.substr(start, p - start)));
-    pos_ = p;
-    return v;
-  }
+  double number() { return parse_number(line_, pos_, ctx_); }
 
   double bracketed(int depth) {
     const std::size_t open = pos_;
@@ -221,19 +203,12 @@ private:
       if (pos_ >= t_.size() || t_[pos_] != '[') fail(start, "syntax", "ATAN[y]/[x]: '[x]' missing");
       const double b = bracketed(depth + 1);
       r = std::atan2(a, b) / deg;
-    } else if (name == "SIN") r = std::sin(a * deg);
-    else if (name == "COS") r = std::cos(a * deg);
-    else if (name == "TAN") r = std::tan(a * deg);
-    else if (name == "ASIN") { domain(a >= -1.0 && a <= 1.0); r = std::asin(a) / deg; }
-    else if (name == "ACOS") { domain(a >= -1.0 && a <= 1.0); r = std::acos(a) / deg; }
-    else if (name == "SQRT") { domain(a >= 0.0); r = std::sqrt(a); }
-    else if (name == "ABS") r = std::abs(a);
-    else if (name == "ROUND") r = std::round(a);
-    else if (name == "FIX") r = std::floor(a);
-    else if (name == "FUP") r = std::ceil(a);
-    else if (name == "EXP") r = std::exp(a);
-    else if (name == "LN") { domain(a > 0.0); r = std::log(a); }
-    else fail(start, "unknown-function", fmt::format("{}[: unknown function", name));
+    } else {
+      bool known = true, ok = true;
+      r = unary_function(name, a, known, ok);
+      if (!known) fail(start, "unknown-function", fmt::format("{}[: unknown function", name));
+      domain(ok);
+    }
     if (!std::isfinite(r)) fail(start, "not-finite", fmt::format("{}[{}]: the result is not a finite number", name, a));
     return r;
   }
@@ -247,6 +222,47 @@ private:
 
 
 }  // namespace
+
+double parse_number(const NormalizedLine& line, std::size_t& pos, const LineContext& ctx) {
+  const std::string_view t = line.text;
+  const std::size_t start = pos;
+  std::size_t p = pos;
+  int dots = 0, digits = 0;
+  while (p < t.size() && (is_digit(t[p]) || t[p] == '.')) {
+    if (t[p] == '.') ++dots; else ++digits;
+    ++p;
+  }
+  if (dots > 1 || digits == 0)
+    fail_at(line, start, ctx, "bad-number", fmt::format("'{}': not a number", t.substr(start, p - start)));
+  double v = 0.0;
+  const char* first = t.data() + start;
+  // from_chars does not accept a leading '.'; it does accept "5." and ".5" with chars_format::fixed
+  const auto r = std::from_chars(first, t.data() + p, v, std::chars_format::fixed);
+  if (r.ec != std::errc() || r.ptr != t.data() + p || !std::isfinite(v))
+    fail_at(line, start, ctx, "bad-number", fmt::format("'{}': not a number", t.substr(start, p - start)));
+  pos = p;
+  return v;
+}
+
+double unary_function(std::string_view name, double a, bool& known, bool& domain) noexcept {
+  constexpr double deg = std::numbers::pi / 180.0;
+  known = true;
+  domain = true;
+  if (name == "SIN") return std::sin(a * deg);
+  if (name == "COS") return std::cos(a * deg);
+  if (name == "TAN") return std::tan(a * deg);
+  if (name == "ASIN") { domain = a >= -1.0 && a <= 1.0; return domain ? std::asin(a) / deg : 0.0; }
+  if (name == "ACOS") { domain = a >= -1.0 && a <= 1.0; return domain ? std::acos(a) / deg : 0.0; }
+  if (name == "SQRT") { domain = a >= 0.0; return domain ? std::sqrt(a) : 0.0; }
+  if (name == "ABS") return std::abs(a);
+  if (name == "ROUND") return std::round(a);
+  if (name == "FIX") return std::floor(a);
+  if (name == "FUP") return std::ceil(a);
+  if (name == "EXP") return std::exp(a);
+  if (name == "LN") { domain = a > 0.0; return domain ? std::log(a) : 0.0; }
+  known = false;
+  return 0.0;
+}
 
 double parse_real_value(const NormalizedLine& line, std::size_t& pos, const LineContext& ctx,
                         const ParameterTable& parameters) {

@@ -23,7 +23,7 @@ void fail_at(const NormalizedLine& line, std::size_t pos, const LineContext& ctx
   fail_column(ctx, col, rule, message);
 }
 
-void normalize_line(std::string_view raw, const LineContext& ctx, NormalizedLine& out) {
+void normalize_line(std::string_view raw, const LineContext& ctx, NormalizedLine& out, const NormalizeRules& rules) {
   out.text.clear();
   out.column.clear();
   out.block_delete = false;
@@ -49,7 +49,25 @@ void normalize_line(std::string_view raw, const LineContext& ctx, NormalizedLine
       comment_column = col;
       continue;
     }
-    if (c == ';') break;
+    if (c == ';') {
+      if (rules.semicolon_comment) break;
+      // Fanuc's end of block: nothing but spaces and comments may follow it
+      for (std::size_t j = i + 1; j < raw.size(); ++j) {
+        const char d = raw[j];
+        if (d == ' ' || d == '\t' || d == '\r' || d == ';') continue;
+        if (d == '(') {
+          const std::size_t close = raw.find(')', j);
+          if (close != std::string_view::npos) {
+            j = close;
+            continue;
+          }
+        }
+        fail_column(ctx, col, "semicolon",
+                    fmt::format("';': ends the block here (it is no comment in dialect {}); write comments in ( )",
+                                rules.dialect));
+      }
+      break;
+    }
     if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') continue;
     if (c == '%') {
       if (seen_content) fail_column(ctx, col, "percent", "'%' must stand alone on its line (tape start/end)");
@@ -75,7 +93,8 @@ void normalize_line(std::string_view raw, const LineContext& ctx, NormalizedLine
       fail_column(ctx, col, "character", fmt::format("byte 0x{:02x}: only ASCII is allowed outside comments", uc));
     const char u = (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
     const bool ok = is_letter(u) || is_digit(u) || u == '.' || u == '+' || u == '-' || u == '*' || u == '/' ||
-                    u == '[' || u == ']' || u == '#' || u == '<' || u == '>' || u == '=' || u == '_';
+                    u == '[' || u == ']' || u == '#' || u == '<' || u == '>' || u == '=' || u == '_' ||
+                    (u == ',' && rules.comma);
     if (c == '@' || c == '^')
       fail_column(ctx, col, "unsupported",
                   fmt::format("'{}': LinuxCNC polar coordinates (@ radius, ^ angle) are not supported by Kontur", c));

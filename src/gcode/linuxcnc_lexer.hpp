@@ -27,8 +27,20 @@ struct NormalizedLine {
   int first_column = 1;       // raw column of the first character of text
 };
 
+/// How a dialect's lines differ in normalize_line (shared by the LinuxCNC and Fanuc front ends).
+struct NormalizeRules {
+  /// ';' starts a comment to the end of the line (LinuxCNC, Mach3); else it ends the block (Fanuc's
+  /// EOB) and only spaces or a comment may follow it.
+  bool semicolon_comment = true;
+  /// ',' is kept (Fanuc's POW[a,b], ATAN[a,b], ",C" / ",R" corners); LinuxCNC refuses it.
+  bool comma = false;
+  /// The dialect's name for messages about ';' ("fanuc").
+  const char* dialect = "linuxcnc";
+};
+
 /// Normalises `raw` (one line without its end-of-line characters) into `out` (buffers reused).
-void normalize_line(std::string_view raw, const LineContext& ctx, NormalizedLine& out);
+void normalize_line(std::string_view raw, const LineContext& ctx, NormalizedLine& out,
+                    const NormalizeRules& rules = NormalizeRules{});
 
 /// A parameter assignment of the line, applied after the whole line is read (LinuxCNC's rule).
 struct Assignment {
@@ -53,6 +65,14 @@ std::string_view parse_parameter_name(const NormalizedLine& line, std::size_t& p
 /// After '#' (at `start`): the number of a numbered parameter, an integer 1..5602; advances pos.
 int parse_parameter_index(const NormalizedLine& line, std::size_t& pos, std::size_t start, const LineContext& ctx,
                           const ParameterTable& parameters);
+
+/// A decimal number (digits with at most one '.') at text[pos]; advances pos. Shared by the dialects.
+double parse_number(const NormalizedLine& line, std::size_t& pos, const LineContext& ctx);
+
+/// The functions of one argument the dialects share (angles in degrees): SIN COS TAN ASIN ACOS
+/// SQRT ABS ROUND FIX (down) FUP (up) EXP LN. `known` false for another name; `domain` false when
+/// `a` is outside the function's domain.
+double unary_function(std::string_view name, double a, bool& known, bool& domain) noexcept;
 
 /// A G/M code or parameter number must be this close to an integer.
 inline constexpr double integer_tolerance = 1e-6;

@@ -106,7 +106,7 @@ CodeInfo m_code_info(int m) noexcept {
   return {};
 }
 
-BlockCodes classify_codes(const Words& w, const Diagnostics& diag) {
+BlockCodes classify_codes(const Words& w, const Diagnostics& diag, bool fanuc_cycles) {
   BlockCodes codes;
   codes.g.fill(-1);
   codes.m.fill(-1);
@@ -114,7 +114,7 @@ BlockCodes classify_codes(const Words& w, const Diagnostics& diag) {
     const int g = w.g[static_cast<std::size_t>(i)];
     const int col = w.g_column[static_cast<std::size_t>(i)];
     const std::string gn = g_name(g, w.g_leading_zero[static_cast<std::size_t>(i)] != 0);
-    const CodeInfo info = g_code_info(g);
+    const CodeInfo info = fanuc_cycles && is_fanuc_cycle(g) ? CodeInfo{g_motion, nullptr} : g_code_info(g);
     const int grp = info.group;
     if (grp == -2) diag.fail(col, "unsupported", fmt::format("{}: {} is not supported by Kontur", gn, info.unsupported));
     if (grp < 0) diag.fail(col, "unknown-g-code", fmt::format("{}: unknown G code", gn));

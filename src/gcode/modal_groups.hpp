@@ -37,9 +37,14 @@ struct CodeInfo {
 /// The M code `m`.
 [[nodiscard]] CodeInfo m_code_info(int m) noexcept;
 
-/// True for the drilling cycles G73, G81, G82, G83 (times 10).
+/// True for the drilling cycles G73, G81, G82, G83 and the Fanuc family's G84, G85, G86, G89 (times 10).
 [[nodiscard]] constexpr bool is_canned_cycle(int motion) noexcept {
-  return motion == 730 || motion == 810 || motion == 820 || motion == 830;
+  return motion == 730 || motion == 810 || motion == 820 || motion == 830 || motion == 840 || motion == 850 ||
+         motion == 860 || motion == 890;
+}
+/// True for the cycles only the Fanuc family's rules expand (DialectRules::fanuc_cycles).
+[[nodiscard]] constexpr bool is_fanuc_cycle(int g10) noexcept {
+  return g10 == 840 || g10 == 850 || g10 == 860 || g10 == 890;
 }
 
 /// The codes of one block by group: the code (G times 10) and its column, -1 where none.
@@ -61,7 +66,8 @@ struct BlockCodes {
 
 /// Sorts the block's G and M codes into their groups; throws at an unknown or unsupported G code
 /// or at two codes of one group (except "G80 G0" of CAM safety lines, and M7 with M8). M codes not
-/// in the tables (machine-specific, user M100-M199) are listed in ignored_m.
-[[nodiscard]] BlockCodes classify_codes(const Words& w, const Diagnostics& diag);
+/// in the tables (machine-specific, user M100-M199) are listed in ignored_m. With `fanuc_cycles`
+/// G84, G85, G86 and G89 are motion codes (group 1) instead of refused.
+[[nodiscard]] BlockCodes classify_codes(const Words& w, const Diagnostics& diag, bool fanuc_cycles = false);
 
 }  // namespace kontur::gcode::detail

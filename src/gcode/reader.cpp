@@ -33,7 +33,7 @@ struct Reader::Impl {
     opt.dialect = dialect.dialect;
     executor.set_rules(detail::rules_of(dialect.dialect));
     front_end = detail::make_front_end(dialect.dialect,
-                                       detail::DialectServices{dialect.dialect, input, params, diag, opt, executor});
+                                       detail::DialectServices{dialect.dialect, input, params, diag, opt, executor, &executor});
   }
 
   // Reads lines until the executor has made blocks or the program has ended.
