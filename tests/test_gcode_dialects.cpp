@@ -216,9 +216,13 @@ TEST(GcodeDialect, GrblSettingLinesAreIgnoredWithAWarningAndHomingOrJoggingIsRef
   ASSERT_EQ(reader.warning_count(), 2u);
   EXPECT_NE(reader.warnings()[0].find("g.gcode:1:1: warning: $32=0: a grbl setting or command, ignored"),
             std::string::npos);
-  EXPECT_EQ(error_of("G21\n$H\nG1 X1 F100\n", grbl),
-            "t.nc:2:1: $H: grbl's homing cycle moves to the machine's home switches, which a machine file does not "
-            "give (dialect grbl); home the machine before the program");
+  EXPECT_EQ(error_of("G21\nG0 X1\n$H\nG1 X1 F100\n", grbl),
+            "t.nc:3:1: $H: grbl's homing cycle in the middle of a program moves to the machine's home switches, which "
+            "a machine file does not give (dialect grbl); home the machine before the program");
+  Reader homed("h.gcode", "$X\nG21\n$H\nG90\nG1 X5 F100\nM2\n", grbl);  // homing first: where the run starts
+  while (homed.next(b)) {
+  }
+  EXPECT_EQ(homed.warning_count(), 2u);
   EXPECT_NE(error_of("$J=G91 X10 F100\n", grbl).find("t.nc:1:1: $J=G91 X10 F100: a grbl jog is a manual motion"),
             std::string::npos);
   // In LinuxCNC a '$' line is not G-code.

@@ -1,8 +1,8 @@
 // Dialect names and the detection of a program's dialect from its first lines (dialect.hpp).
 // Each line is looked at once, upper-cased, for the marks of each dialect; the strongest kind of
 // mark found decides (a Sinumerik or LinuxCNC construct over a grbl `$` line over Fanuc's syntax
-// over a control named in a comment over the file's extension), the first of its kind names the
-// line in the reason.
+// over a control named in a comment over what only a Fanuc accepts over the file's extension),
+// the first of its kind names the line in the reason.
 #include <kontur/error.hpp>
 #include <kontur/gcode/dialect.hpp>
 #include <kontur/tolerances.hpp>
@@ -54,7 +54,14 @@ std::string dialect_names() {
 namespace {
 
 // Kinds of marks, strongest first.
-enum Strength { syntax_sinumerik_or_linuxcnc = 0, grbl_command = 1, fanuc_syntax = 2, named = 3, extension = 4 };
+enum Strength {
+  syntax_sinumerik_or_linuxcnc = 0,
+  grbl_command = 1,
+  fanuc_syntax = 2,
+  named = 3,
+  fanuc_usage = 4,  // what only a Fanuc-family control accepts (axis words after G80)
+  extension = 5
+};
 
 struct Mark {
   Dialect dialect = Dialect::linuxcnc;
@@ -129,7 +136,7 @@ DialectChoice detect_dialect(std::string_view name, std::string_view text) {
   static const std::regex macro_re(
       R"(^\s*(N\d+\s*)?(IF\s*\[.*\]\s*(GOTO|THEN)|WHILE\s*\[.*\]\s*DO\s*\d|END\s*\d\b|GOTO\s*\d)|(^|[^0-9.])(M98\s*P|G65\s*P|M97\s*P))");
 
-  Mark marks[5];
+  Mark marks[6];
   auto note = [&](Strength s, Dialect d, std::string reason) {
     Mark& m = marks[s];
     if (m.found) return;
@@ -184,7 +191,7 @@ DialectChoice detect_dialect(std::string_view name, std::string_view text) {
     if (std::regex_search(code, g80_re)) after_g80 = true;
     else if (std::regex_search(code, group01_re)) after_g80 = false;
     else if (after_g80 && std::regex_search(code, axis_words_re)) {
-      note(fanuc_syntax, Dialect::fanuc,
+      note(fanuc_usage, Dialect::fanuc,
            fmt::format("axis words without a motion code after G80 on line {} (a Fanuc keeps G0 / G1)", line));
       after_g80 = false;
     }
@@ -213,7 +220,7 @@ DialectChoice detect_dialect(std::string_view name, std::string_view text) {
 
   for (Mark& m : marks) {
     if (!m.found) continue;
-    if (&m == &marks[fanuc_syntax] && fanuc_family_name) {
+    if ((&m == &marks[fanuc_syntax] || &m == &marks[fanuc_usage]) && fanuc_family_name) {
       return {*fanuc_family_name, fmt::format("{}, and a comment naming {} on line {}", m.reason, fanuc_family_word,
                                               fanuc_family_line)};
     }

@@ -10,10 +10,17 @@ namespace kontur::gcode::detail {
 void LinuxcncFrontEnd::grbl_command(std::string_view line, int column) {
   const auto upper = [](char c) { return static_cast<char>(std::toupper(static_cast<unsigned char>(c))); };
   const char what = line.size() > 1 ? upper(line[1]) : ' ';
+  // Homing before the program's first axis words only says where the run starts: at home, where a run
+  // starts anyway. Later it would move to switches a machine file does not give.
+  if (what == 'H' && !axis_words_seen) {
+    diag.warn(column, fmt::format("{}: grbl's homing cycle before the program: the run starts at the home position",
+                                  line));
+    return;
+  }
   if (what == 'H')
     fail(column, "grbl-homing",
-         fmt::format("{}: grbl's homing cycle moves to the machine's home switches, which a machine file does not "
-                     "give (dialect grbl); home the machine before the program",
+         fmt::format("{}: grbl's homing cycle in the middle of a program moves to the machine's home switches, which "
+                     "a machine file does not give (dialect grbl); home the machine before the program",
                      line));
   if (what == 'J')
     fail(column, "grbl-jog",
@@ -63,6 +70,7 @@ LineOutcome LinuxcncFrontEnd::read_line(std::string_view raw, Words& words) {
     if (a.index > 0) params.set_numbered(a.index, a.value);
     else params.set_named(a.name, a.value);
   }
+  if (words.has('X') || words.has('Y') || words.has('Z')) axis_words_seen = true;
   return words.empty() ? LineOutcome::nothing : LineOutcome::words;
 }
 
