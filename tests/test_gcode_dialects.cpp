@@ -205,6 +205,30 @@ TEST(GcodeDialect, LinuxcncSubroutineInItsOwnFileIsFoundOnThePath) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(GcodeDialect, LinuxcncPolarCoordinatesAboutTheOriginAndCumulativeInG91) {
+  ReaderOptions linuxcnc;
+  linuxcnc.dialect = Dialect::linuxcnc;
+  const auto blocks = read("G21 G90 G17\nG1 @10 ^90 F100\n^180\n@5\nG91 @1 ^-90\nG90 G1 X0 Y0\nM2\n", linuxcnc);
+  ASSERT_EQ(blocks.size(), 5u);
+  EXPECT_NEAR(blocks[0].end.x(), 0.0, 1e-12);  // @10 ^90 is Y10
+  EXPECT_DOUBLE_EQ(blocks[0].end.y(), 10.0);
+  EXPECT_DOUBLE_EQ(blocks[1].end.x(), -10.0);  // ^180 keeps the radius 10
+  EXPECT_NEAR(blocks[1].end.y(), 0.0, 1e-12);
+  EXPECT_DOUBLE_EQ(blocks[2].end.x(), -5.0);  // @5 keeps the angle 180
+  EXPECT_NEAR(blocks[3].end.x(), 0.0, 1e-12);  // G91: radius 5 + 1, angle 180 - 90
+  EXPECT_DOUBLE_EQ(blocks[3].end.y(), 6.0);
+  EXPECT_EQ(error_of("G21 G91\nG1 @1 ^10 F100\n", linuxcnc),
+            "t.nc:2:4: @ ^: an incremental polar move cannot start at the origin (no angle there)");
+  EXPECT_EQ(error_of("G21\nG1 X1 @1 F100\n", linuxcnc),
+            "t.nc:2:4: X: an axis of the plane with @ ^ in one block (polar coordinates give both)");
+  EXPECT_EQ(error_of("G21 G18\nG1 @1 ^10 F100\n", linuxcnc),
+            "t.nc:2:4: @ ^: LinuxCNC's polar coordinates are in the XY plane only (G17)");
+  ReaderOptions fanuc;
+  fanuc.dialect = Dialect::fanuc;
+  EXPECT_EQ(error_of("G1 @1 ^10 F100\n", fanuc),
+            "t.nc:1:4: '@': LinuxCNC's polar coordinates (@ radius, ^ angle) are not words of dialect fanuc");
+}
+
 TEST(GcodeDialect, GrblSettingLinesAreIgnoredWithAWarningAndHomingOrJoggingIsRefused) {
   ReaderOptions grbl;
   grbl.dialect = Dialect::grbl;

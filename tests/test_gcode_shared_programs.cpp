@@ -26,7 +26,6 @@ const std::map<std::string, std::string>& expected_errors() {
       {"linuxcnc-tp/diagnostic/bad_spirals_lathe.ngc", ":12:1: G3: radius to the start 12.7 mm and to the end 28.3981 mm"},
       {"linuxcnc-tp/diagnostic/spiral_aggressive.ngc", ":12:1: G2: radius to the start 5.08 mm and to the end 53.34 mm"},
       {"linuxcnc-tp/diagnostic/bad_spirals_comp.ngc", ":10:1: G41: cutter radius compensation G41/G42 is not supported"},
-      {"linuxcnc-tp/quick-tests/sam-circle_lines.ngc", ":8:8: '@': LinuxCNC polar coordinates (@ radius, ^ angle) are not supported"},
       {"linuxcnc-tp/spindle/g33_blend.ngc", ":9:1: G33: spindle-synchronised motion"},
       {"linuxcnc-tp/spindle/g33_simple.ngc", ":4:1: G33: spindle-synchronised motion"},
       {"linuxcnc-tp/spindle/rigidtap_test.ngc", ":4:1: G33.1: spindle-synchronised motion"},

@@ -45,6 +45,10 @@ struct DialectRules {
   /// The Fanuc family's drilling cycles G84 (tapping, as feed in and out), G85, G86 and G89 are
   /// expanded, and K in a cycle block is its repeat count (L); LinuxCNC refuses G84-G89.
   bool fanuc_cycles = false;
+  /// Polar coordinates are LinuxCNC's `@ ^`: about the XY origin of the program coordinates, in G17
+  /// only; in G91 both add to the current point's radius and angle. Else Sinumerik's AP= / RP=
+  /// about the pole (G110-G112), in any plane.
+  bool linuxcnc_polar = false;
 };
 /// The rules of `dialect` (dialect_registry.cpp).
 [[nodiscard]] DialectRules rules_of(Dialect dialect) noexcept;

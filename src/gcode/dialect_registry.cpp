@@ -20,7 +20,7 @@ DialectRules rules_of(Dialect dialect) noexcept {
       r.motion_code_beside_nonmodal = true;
       r.fanuc_cycles = true;
       break;
-    case Dialect::linuxcnc:
+    case Dialect::linuxcnc: r.linuxcnc_polar = true; break;
     case Dialect::sinumerik:
     case Dialect::grbl: break;
   }

@@ -22,6 +22,7 @@ FanucFrontEnd::FanucFrontEnd(const DialectServices& services)
       state(services.state) {
   rules.semicolon_comment = dialect_ == Dialect::mach3;  // Mach3 takes ';' comments; a Fanuc ends the block
   rules.comma = true;
+  rules.polar = false;
   rules.dialect = to_string(dialect_);
   locals.emplace_back();
   reader = [this](double index, std::size_t at) { return read_var(index, at); };

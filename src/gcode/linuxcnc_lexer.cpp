@@ -94,10 +94,11 @@ void normalize_line(std::string_view raw, const LineContext& ctx, NormalizedLine
     const char u = (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
     const bool ok = is_letter(u) || is_digit(u) || u == '.' || u == '+' || u == '-' || u == '*' || u == '/' ||
                     u == '[' || u == ']' || u == '#' || u == '<' || u == '>' || u == '=' || u == '_' ||
-                    (u == ',' && rules.comma);
-    if (c == '@' || c == '^')
-      fail_column(ctx, col, "unsupported",
-                  fmt::format("'{}': LinuxCNC polar coordinates (@ radius, ^ angle) are not supported by Kontur", c));
+                    (u == ',' && rules.comma) || ((u == '@' || u == '^') && rules.polar);
+    if ((c == '@' || c == '^') && !rules.polar)
+      fail_column(ctx, col, "character",
+                  fmt::format("'{}': LinuxCNC's polar coordinates (@ radius, ^ angle) are not words of dialect {}", c,
+                              rules.dialect));
     if (c == ':' && !seen_content) {  // Fanuc's ISO program number ":0097" is "O0097"
       out.first_column = col;
       seen_content = true;
@@ -145,6 +146,18 @@ void parse_words(const NormalizedLine& line, const LineContext& ctx, const Param
       ++pos;
       a.value = parse_real_value(line, pos, ctx, parameters);
       ++assignment_count;
+      first = false;
+      continue;
+    }
+    if (c == '@' || c == '^') {  // LinuxCNC polar coordinates: @ radius, ^ angle [deg] (the executor's)
+      const unsigned bit = c == '@' ? 2u : 1u;
+      if (w.polar & bit) fail_at(line, start, ctx, "word-twice", fmt::format("{}: word given twice", c));
+      ++pos;
+      const double v = parse_real_value(line, pos, ctx, parameters);
+      if (c == '@') w.polar_radius = v;
+      else w.polar_angle = v;
+      w.polar = static_cast<std::uint8_t>(w.polar | bit);
+      if (w.polar_column == 0) w.polar_column = col;
       first = false;
       continue;
     }

@@ -34,6 +34,8 @@ struct NormalizeRules {
   bool semicolon_comment = true;
   /// ',' is kept (Fanuc's POW[a,b], ATAN[a,b], ",C" / ",R" corners); LinuxCNC refuses it.
   bool comma = false;
+  /// '@' (radius) and '^' (angle) are LinuxCNC's polar coordinates; else they are refused.
+  bool polar = true;
   /// The dialect's name for messages about ';' ("fanuc").
   const char* dialect = "linuxcnc";
 };

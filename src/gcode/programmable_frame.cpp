@@ -139,12 +139,23 @@ Vec3 Executor::polar_target(const Vec3& t) const {
     const char letter = static_cast<char>('X' + a);
     if (w->has(letter))
       fail(w->col(letter), "polar",
-           fmt::format("{}: an axis of the plane with AP= / RP= in one block (polar coordinates give both)", letter));
+           fmt::format("{}: an axis of the plane with {} in one block (polar coordinates give both)", letter,
+                       rules_.linuxcnc_polar ? "@ ^" : "AP= / RP="));
   }
   const double rel1 = pos[pa.a1] - pole[pa.a1], rel2 = pos[pa.a2] - pole[pa.a2];
-  const double angle = (w->polar & 1u) ? w->polar_angle * pi / 180.0 : std::atan2(rel2, rel1);
-  const double radius = (w->polar & 2u) ? w->polar_radius * scale() : std::hypot(rel1, rel2);
-  if (radius < 0.0) fail(w->polar_column, "polar", fmt::format("RP={}: the radius must be >= 0", num(w->polar_radius)));
+  double angle = (w->polar & 1u) ? w->polar_angle * pi / 180.0 : std::atan2(rel2, rel1);
+  double radius = (w->polar & 2u) ? w->polar_radius * scale() : std::hypot(rel1, rel2);
+  if (rules_.linuxcnc_polar) {  // @ ^ about the XY origin (pole stays 0); G91 adds to the current ones
+    if (modal.plane != Plane::xy)
+      fail(w->polar_column, "polar", "@ ^: LinuxCNC's polar coordinates are in the XY plane only (G17)");
+    if (modal.distance == DistanceMode::incremental) {
+      if (std::hypot(rel1, rel2) <= tolerances::gcode_same_point_mm)
+        fail(w->polar_column, "polar", "@ ^: an incremental polar move cannot start at the origin (no angle there)");
+      angle = std::atan2(rel2, rel1) + ((w->polar & 1u) ? w->polar_angle * pi / 180.0 : 0.0);
+      radius = std::hypot(rel1, rel2) + ((w->polar & 2u) ? w->polar_radius * scale() : 0.0);
+    }
+  }
+  if (radius < 0.0 && !rules_.linuxcnc_polar) fail(w->polar_column, "polar", fmt::format("RP={}: the radius must be >= 0", num(w->polar_radius)));
   Vec3 r = t;
   r[pa.a1] = pole[pa.a1] + radius * std::cos(angle);
   r[pa.a2] = pole[pa.a2] + radius * std::sin(angle);
