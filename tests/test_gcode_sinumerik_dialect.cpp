@@ -183,6 +183,20 @@ TEST(GcodeSinumerik, NestedLoopsAndAFalseWhileSkipItsBody) {
   expect_point(b[3].end, 2, 2, 0);
 }
 
+TEST(GcodeSinumerik, RepeatedProgramSections) {
+  const auto b = read("R1=0\nSTART: R1=R1+1\nG1 F100 X=R1\nREPEAT START P=2\nY1\nM30\n");
+  ASSERT_EQ(b.size(), 4u);
+  EXPECT_EQ(b[2].end.x(), 3.0);
+  expect_point(b[3].end, 3, 1, 0);
+  const auto c = read(
+      "G1 F100\nA1: X1\nA2: X2\nA3: X3\nREPEAT A1 A2\nREPEATB A3 P=2\nB1: Y1\nY2\nENDLABEL: Y3\nZ1\n"
+      "REPEAT B1 P=1\nM30\n");
+  std::vector<double> v;
+  for (const auto& blk : c) v.push_back(blk.end.x() * 100 + blk.end.y() * 10 + blk.end.z());
+  const std::vector<double> expected = {100, 200, 300, 100, 200, 300, 300, 310, 320, 330, 331, 311, 321, 331};
+  EXPECT_EQ(v, expected);
+}
+
 TEST(GcodeSinumerik, AnEndlessLoopIsStoppedByTheLoopLimit) {
   ReaderOptions o = sinumerik();
   o.max_loop_iterations = 50;

@@ -21,7 +21,8 @@ bool is_close(std::string_view kw) {
   return kw == "ENDIF" || kw == "ENDWHILE" || kw == "ENDFOR" || kw == "UNTIL" || kw == "ENDLOOP";
 }
 const char* kind_name(int k) {
-  static constexpr const char* names[] = {"IF", "WHILE", "FOR", "REPEAT", "LOOP", "a subprogram call"};
+  static constexpr const char* names[] = {"IF", "WHILE", "FOR", "REPEAT", "LOOP", "a subprogram call",
+                                          "a repeated section"};
   return names[k];
 }
 
@@ -44,6 +45,7 @@ std::string SinumerikFrontEnd::scan_keyword(bool& single_if, Head& head) {
   head = read_head(c, true);
   if (head.deleted) return {};
   std::string kw(identifier(c));
+  if (kw == "REPEAT" && !c.end()) return "REPEAT_SECTION";  // REPEAT label: no loop to close
   if (kw == "IF") {
     while (!c.end()) {
       const std::string_view id = identifier(c);
@@ -300,11 +302,11 @@ void SinumerikFrontEnd::control(std::string_view kw_text, Cursor& c, int col) {
     }
     return;
   }
-  if (kw == "REPEAT") {
-    if (!c.end())
-      fail(c.col(), "unsupported",
-           "REPEAT with a label: repeating a program section is not supported by Kontur (dialect sinumerik); REPEAT "
-           "alone opens a REPEAT .. UNTIL loop");
+  if (kw == "REPEAT" || kw == "REPEATB") {
+    if (!c.end() || kw == "REPEATB") {
+      repeat_section(c, col, kw == "REPEATB");
+      return;
+    }
     frames.push_back(Frame{FKind::repeat, in().tell(), line + 1});
     return;
   }
@@ -342,6 +344,66 @@ void SinumerikFrontEnd::control(std::string_view kw_text, Cursor& c, int col) {
     return;
   }
   fail(col, "internal", fmt::format("{}: statement not handled", kw));
+}
+
+// ---------------------------------------------------------------- program sections
+
+void SinumerikFrontEnd::repeat_section(Cursor& c, int col, bool single) {
+  const char* kw = single ? "REPEATB" : "REPEAT";
+  const std::string start(identifier(c));
+  if (start.empty()) fail(c.col(), "syntax", fmt::format("{}: a label expected", kw));
+  std::string end_label;
+  {
+    Cursor look = c;
+    const std::string id(identifier(look));
+    if (!id.empty() && !(id == "P" && look.peek() == '=')) {
+      if (single) fail(c.col(), "syntax", "REPEATB: one label (the block repeated)");
+      end_label = id;
+      c = look;
+    }
+  }
+  long times = 1;
+  if (identifier(c) == "P") {
+    if (!c.eat('=')) fail(c.col(), "syntax", fmt::format("{} {} P: '=' expected", kw, start));
+    const double p = expr(c);
+    if (p < 1.0 || p != std::floor(p) || p > static_cast<double>(opt.max_loop_iterations))
+      fail(col, "syntax", fmt::format("{} {} P={}: the repetitions are an integer >= 1", kw, start, num(p)));
+    times = static_cast<long>(p);
+  }
+  if (!c.end()) fail(c.col(), "syntax", fmt::format("'{}': unexpected after {}", c.t.substr(c.p, 16), kw));
+  const std::size_t here = in().line_start();
+  const auto it = labels.find(start);
+  if (it == labels.end() || it->second.offset >= here)
+    fail(col, "jump-target", fmt::format("{} {}: label not found before this line", kw, start));
+  if (!end_label.empty()) {
+    const auto e = labels.find(end_label);
+    if (e == labels.end() || e->second.offset >= here || e->second.offset < it->second.offset)
+      fail(col, "jump-target", fmt::format("{} {} {}: the end label is not between the start label and this line", kw,
+                                           start, end_label));
+  }
+  Frame f{FKind::section, it->second.offset, it->second.line};
+  f.var = end_label;
+  f.single = single;
+  f.repeats = times;
+  f.stop_offset = here;
+  f.ret_offset = in().tell();
+  f.ret_line = diag.line() + 1;
+  loop_guard(kw);
+  frames.push_back(std::move(f));
+  in().seek(frames.back().offset, frames.back().line);
+}
+
+void SinumerikFrontEnd::end_section() {
+  Frame& f = frames.back();
+  if (--f.repeats > 0) {
+    loop_guard("REPEAT");
+    in().seek(f.offset, f.line);
+    return;
+  }
+  const std::size_t offset = f.ret_offset;
+  const long line = f.ret_line;
+  frames.pop_back();
+  in().seek(offset, line);
 }
 
 // ---------------------------------------------------------------- subprograms

@@ -31,7 +31,7 @@ constexpr const char* no_op_keywords[] = {
 };
 // Function-like statements without an effect on the path (display, spindle assignment, settings).
 constexpr const char* no_op_calls[] = {"WORKPIECE", "SETMS", "CYCLE832", "FGROUP", "SPOS", "SPOSA", "SUPD", "G_SETTING",
-                                       "SETPIECE", "FFWON", "WAITM", "WAITE", "WAITS", "SETAL", "CLEARM", "SETM"};
+                                       "SETPIECE", "FFWON", "WAITM", "WAITE", "WAITS", "CLEARM", "SETM"};
 
 // What the control can do and Kontur does not.
 struct Refusal {
@@ -64,6 +64,13 @@ constexpr Refusal refusals[] = {
     {"CALL", "indirect calls (CALL)"},
     {"PCALL", "calls by path (PCALL)"},
     {"OSC", "tool oscillation (OSC)"},
+    {"RND", "corner rounding between blocks (RND=)"},
+    {"RNDM", "modal corner rounding (RNDM=)"},
+    {"CHF", "chamfers between blocks (CHF=)"},
+    {"CHR", "chamfers between blocks (CHR=)"},
+    {"ANG", "contour definitions by angles (ANG=)"},
+    {"AR", "arcs by their opening angle (AR=)"},
+    {"GOTOS", "jumps to the program start (GOTOS)"},
     {"SPATH", "SPATH"},
 };
 }  // namespace
@@ -199,6 +206,14 @@ LineOutcome SinumerikFrontEnd::read_program_line(std::string_view raw, Words& wo
     return LineOutcome::program_end;
   }
   const Head h = read_head(cur, true);
+  if (!frames.empty() && frames.back().kind == FKind::section) {  // a repeated section ends here?
+    const Frame& f = frames.back();
+    if (in().line_start() == f.stop_offset) {  // back at the REPEAT line: before it
+      end_section();
+      return LineOutcome::nothing;
+    }
+    if (f.single || (!f.var.empty() && h.label == f.var) || (f.var.empty() && h.label == "ENDLABEL")) end_section();
+  }
   if (h.deleted) return LineOutcome::nothing;
   words.n_number = h.n;
   if (cur.end()) return LineOutcome::nothing;
@@ -246,8 +261,8 @@ void SinumerikFrontEnd::at_end_of_input() {
                           main_name, frames.empty() ? std::string("a subprogram") : frames.back().var));
   if (frames.empty()) return;
   const Frame& f = frames.back();
-  static constexpr const char* names[] = {"IF", "WHILE", "FOR", "REPEAT", "LOOP", "subprogram call"};
-  static constexpr const char* ends[] = {"ENDIF", "ENDWHILE", "ENDFOR", "UNTIL", "ENDLOOP", "M17 or RET"};
+  static constexpr const char* names[] = {"IF", "WHILE", "FOR", "REPEAT", "LOOP", "subprogram call", "REPEAT"};
+  static constexpr const char* ends[] = {"ENDIF", "ENDWHILE", "ENDFOR", "UNTIL", "ENDLOOP", "M17 or RET", "its end label"};
   const auto k = static_cast<std::size_t>(f.kind);
   diag.fail_at_line(f.kind == FKind::call ? diag.line() : f.line, 1, "control-flow",
                     fmt::format("{}: the program ends inside it ({} missing)", names[k], ends[k]));
@@ -260,7 +275,7 @@ bool SinumerikFrontEnd::statement(Words& words) {
   const int col = c.col();
   const std::string_view kw = identifier(c);
   static constexpr const char* control_words[] = {"IF",    "ELSE",  "ENDIF", "WHILE", "ENDWHILE", "FOR",  "ENDFOR",
-                                                  "REPEAT", "UNTIL", "LOOP",  "ENDLOOP", "GOTOF", "GOTOB", "GOTO",
+                                                  "REPEAT", "UNTIL", "LOOP",  "ENDLOOP", "GOTOF", "GOTOB", "GOTO", "REPEATB",
                                                   "GOTOC", "RET",   "DEF",   "EXTERN", "MSG",   "STOPRE", "MCALL"};
   bool is_control = false;
   for (const char* k : control_words)
@@ -522,6 +537,8 @@ bool SinumerikFrontEnd::keyword_word(std::string_view name, int col, Words& word
       warn_once(n, col, fmt::format("{}: accepted, no effect on Kontur's path (dialect sinumerik)", name));
       return true;
     }
+  if (name == "SETAL")
+    fail(col, "alarm", "SETAL(..): the program raises an alarm here, and the control stops (dialect sinumerik)");
   if (cur.peek() == '(') {
     for (const char* k : no_op_calls)
       if (name == k) {

@@ -76,7 +76,7 @@ private:
   };
   using Scope = std::map<std::string, Variable, std::less<>>;
 
-  enum class FKind { if_, while_, for_, repeat, loop, call };
+  enum class FKind { if_, while_, for_, repeat, loop, call, section };
   struct Frame {
     Frame(FKind k, std::size_t o, long l) : kind(k), offset(o), line(l) {}
     FKind kind;
@@ -87,6 +87,12 @@ private:
     long repeats = 0;    // call: repetitions left (NAME P3)
     std::vector<double> args;  // call: the arguments, for a repetition
     bool external = false;     // call: of a subprogram in a file of its own
+    // section (REPEAT label [label] P=n, REPEATB label P=n): offset is the first line; var the end
+    // label ("" up to ENDLABEL: or the REPEAT line); repeats left; where to go on after it
+    bool single = false;       // REPEATB: the labelled block alone
+    std::size_t stop_offset = 0;  // the REPEAT line (the section ends before it)
+    std::size_t ret_offset = 0;
+    long ret_line = 0;
   };
   struct Position {
     std::size_t offset;
@@ -203,6 +209,10 @@ private:
   // What the control can do and Kontur does not: the feature named `name` stands for, or nullptr.
   static const char* refusal_of(std::string_view name) noexcept;
   void end_of_sub(int col);
+  // The repeated section ends with this line: again from its start, or on after the REPEAT line.
+  void end_section();
+  // REPEAT / REPEATB with a label: a program section run again P times.
+  void repeat_section(Cursor& c, int col, bool single);
   bool find_proc(const std::string& name);
   // Opens NAME.SPF beside the program for a call; false if there is none.
   bool open_external(const std::string& name, int col);
