@@ -3,13 +3,13 @@
 // the same file, CR= arcs, AC / IC, the programmable frame (TRANS / ROT / MIRROR), the drilling
 // cycles CYCLE81 / 82 / 83 (also MCALL), G4 F / S, G9, and the refusals with their messages.
 #include <gtest/gtest.h>
-#include <kontur/error.hpp>
-#include <kontur/gcode/reader.hpp>
-#include <kontur/geometry/helix_arc.hpp>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <kontur/error.hpp>
+#include <kontur/gcode/reader.hpp>
+#include <kontur/geometry/helix_arc.hpp>
 #include <string>
 #include <vector>
 
@@ -229,6 +229,17 @@ TEST(GcodeSinumerik, CrArcsHaveTheirCentreAndDirection) {
   EXPECT_NEAR(std::get<HelixArc>(c[2].geometry).sweep_rad(), 6 * std::numbers::pi, 1e-12);
 }
 
+TEST(GcodeSinumerik, CipCirclesMessagesAndStopre) {
+  const auto b = read("G1 F100 X0 Y0\nMSG(\"ROUGH \" << 1)\nSTOPRE\nCIP X20 Y0 I1=10 J1=10\nMSG(\"\")\nM30\n");
+  ASSERT_EQ(b.size(), 2u);
+  ASSERT_EQ(b[1].type, BlockType::circle_3d);
+  expect_point(b[1].via[0], 10, 10, 0);
+  expect_point(b[1].end, 20, 0, 0);
+  const auto w = warnings_of("MSG(\"A\")\nMSG(\"B\")\nM30\n");
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0], "s.mpf:1:1: warning: MSG(..): messages are not shown by Kontur (warned once)");
+}
+
 TEST(GcodeSinumerik, AcAndIcOverrideTheDistanceModeOfOneWord) {
   const auto b = read("G90 G1 F100 X10 Y10\nX=IC(5) Y20\nG91 X=AC(1) Y5\nX2\nM30\n");
   ASSERT_EQ(b.size(), 4u);
@@ -279,9 +290,10 @@ TEST(GcodeSinumerik, ScaleMakesArcsLargerAndRefusesUnevenPlanes) {
   expect_point(std::get<HelixArc>(b[2].geometry).frame().centre, 40, 0, 0);
   EXPECT_NEAR(std::get<HelixArc>(b[2].geometry).radius_mm(), 10.0, 1e-12);
   expect_point(b[3].end, 1, 1, 0);
-  EXPECT_EQ(error_of("G1 F100 X10\nSCALE X2 Y3\nG2 X20 CR=10\nM30\n"),
-            "s.mpf:3:1: G2: the programmable frame scales the arc's plane unevenly: the arc would not be a circle in the "
-            "machine");
+  EXPECT_EQ(
+      error_of("G1 F100 X10\nSCALE X2 Y3\nG2 X20 CR=10\nM30\n"),
+      "s.mpf:3:1: G2: the programmable frame scales the arc's plane unevenly: the arc would not be a circle in the "
+      "machine");
 }
 
 TEST(GcodeSinumerik, AMirroredArcTurnsTheOtherWay) {
@@ -298,9 +310,9 @@ TEST(GcodeSinumerik, PolarCoordinatesAboutThePole) {
   const auto b = read(
       "G17 G90\nG111 X10 Y10\n"
       "G1 F100 AP=90 RP=5\n"
-      "AP=180\n"   // RP stays 5 (the position's)
+      "AP=180\n"     // RP stays 5 (the position's)
       "G3 AP=270\n"  // an arc about the pole
-      "G110 X5\n"  // the pole 5 to the right of the position (10, 5)
+      "G110 X5\n"    // the pole 5 to the right of the position (10, 5)
       "G1 RP=1 AP=0 Z-1\n"
       "M30\n");
   ASSERT_EQ(b.size(), 4u);
@@ -318,7 +330,7 @@ TEST(GcodeSinumerik, CtArcsAreTangentToThePreviousMove) {
   ASSERT_EQ(b.size(), 4u);
   const auto& a1 = std::get<HelixArc>(b[2].geometry);
   expect_point(a1.frame().centre, 10, 10, 0);
-  EXPECT_GT(a1.frame().normal.z(), 0.0);  // counter-clockwise, leaving along +X
+  EXPECT_GT(a1.frame().normal.z(), 0.0);               // counter-clockwise, leaving along +X
   const auto& a2 = std::get<HelixArc>(b[3].geometry);  // CT is modal
   expect_point(a2.frame().centre, 30, 10, 0);
   EXPECT_LT(a2.frame().normal.z(), 0.0);
@@ -461,8 +473,9 @@ TEST(GcodeSinumerik, RefusalsNameTheLineTheFeatureAndTheDialect) {
             "s.mpf:2:1: POCKET4: this machining cycle of the cycle package (only CYCLE81, CYCLE82 and CYCLE83 are "
             "expanded) is not supported by Kontur (dialect sinumerik)");
   EXPECT_EQ(error_of("G0 X0 FOO\nM30\n"), "s.mpf:1:7: FOO: unknown word or keyword (dialect sinumerik)");
-  EXPECT_EQ(error_of("G0 X0 (COMMENT)\nM30\n"),
-            "s.mpf:1:7: '(': unexpected; it is not a comment on a Sinumerik (comments start with ';'; dialect sinumerik)");
+  EXPECT_EQ(
+      error_of("G0 X0 (COMMENT)\nM30\n"),
+      "s.mpf:1:7: '(': unexpected; it is not a comment on a Sinumerik (comments start with ';'; dialect sinumerik)");
   EXPECT_EQ(error_of("G1 X=UNDEF\nM30\n"), "s.mpf:1:6: UNDEF: variable not defined (DEF it first)");
   EXPECT_EQ(error_of("IF R1==1\nG0 X1\nM30\n"), "s.mpf:1:1: IF: ENDIF not found before the end of the program");
   EXPECT_EQ(error_of("WHILE TRUE\nG0 X1\n"), "s.mpf:1:1: WHILE: the program ends inside it (ENDWHILE missing)");
@@ -498,7 +511,7 @@ TEST(GcodeSinumerik, ARealisticProgramWithItsHeader) {
   Block blk;
   while (reader.next(blk)) b.push_back(blk);
   ASSERT_EQ(b.size(), 1u + 4u * 4u + 7u);
-  expect_point(b[1 + 4 * 1].end, 0, 20, 50);   // the second hole's position
+  expect_point(b[1 + 4 * 1].end, 0, 20, 50);  // the second hole's position
   expect_point(b[1 + 4 * 1 + 2].end, 0, 20, -10);
   const Block& arc = b[1 + 16 + 3];
   ASSERT_EQ(arc.type, BlockType::arc);

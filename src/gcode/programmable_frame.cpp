@@ -5,9 +5,9 @@
 // would be an ellipse: arc() refuses it. Also Sinumerik's
 // polar coordinates (the pole of G110 / G111 / G112, targets from AP= / RP=) and CT, the arc
 // tangent to the previous move.
-#include "executor.hpp"
-
 #include <cmath>
+
+#include "executor.hpp"
 
 namespace kontur::gcode::detail {
 
@@ -18,8 +18,9 @@ void Executor::programmable_frame() {
   const int col = w->frame_column > 0 ? w->frame_column : block_column();
   for (char c = 'A'; c <= 'Z'; ++c)
     if (w->has(c) && c != 'X' && c != 'Y' && c != 'Z')
-      fail(w->col(c), "frame-words", fmt::format("{}: {} is not allowed in a frame block (X Y Z{} only)", word, c,
-                                                 op == FrameOp::rot || op == FrameOp::arot ? " RPL=" : ""));
+      fail(w->col(c), "frame-words",
+           fmt::format("{}: {} is not allowed in a frame block (X Y Z{} only)", word, c,
+                       op == FrameOp::rot || op == FrameOp::arot ? " RPL=" : ""));
   if (w->g_count > 0 || w->m_count > 0 || w->keyword != Keyword::none)
     fail(col, "frame-words", fmt::format("{}: a frame instruction stands in a block of its own", word));
   const Vec3 machine = to_machine(pos);
@@ -73,7 +74,8 @@ void Executor::programmable_frame() {
         if (!w->has(letter)) continue;
         const double f = w->get(letter);
         if (!(std::abs(f) > 1e-9) || std::abs(f) > 1e6)
-          fail(w->col(letter), "frame-words", fmt::format("{} {}{}: a scale factor must not be 0", word, letter, num(f)));
+          fail(w->col(letter), "frame-words",
+               fmt::format("{} {}{}: a scale factor must not be 0", word, letter, num(f)));
         m(axis, axis) = f;
       }
       if (op == FrameOp::scale) {
@@ -98,7 +100,8 @@ void Executor::programmable_frame() {
       }
       break;
     }
-    default: fail(col, "internal", "frame operation not handled");
+    default:
+      fail(col, "internal", "frame operation not handled");
   }
   if ((op == FrameOp::trans || op == FrameOp::rot || op == FrameOp::mirror || op == FrameOp::scale) && !any) {
     a.setIdentity();  // TRANS / ROT / MIRROR alone: no programmable frame
@@ -117,7 +120,9 @@ void Executor::define_pole() {
   const std::string word = g_name(w->pole_g * 10);
   if (w->polar != 0)
     fail(col, "unsupported",
-         fmt::format("{} with AP= / RP=: a pole given in polar coordinates is not supported by Kontur (dialect sinumerik)", word));
+         fmt::format(
+             "{} with AP= / RP=: a pole given in polar coordinates is not supported by Kontur (dialect sinumerik)",
+             word));
   if (w->g_count > 1 || w->m_count > 0 || w->keyword != Keyword::none)
     fail(col, "pole", fmt::format("{}: a pole is defined in a block of its own", word));
   const PlaneAxes pa = plane_axes(modal.plane);
