@@ -240,6 +240,20 @@ TEST(GcodeSinumerik, CipCirclesMessagesAndStopre) {
   EXPECT_EQ(w[0], "s.mpf:1:1: warning: MSG(..): messages are not shown by Kontur (warned once)");
 }
 
+TEST(GcodeSinumerik, ArcsByTheirOpeningAngle) {
+  // end point and angle: 90 degrees over a chord of 10 * sqrt(2): radius 10
+  const auto b = read("G17 G90 G1 F100 X0 Y0\nG3 X10 Y10 AR=90\nG2 X20 Y0 AR=270\nG3 I0 J-10 AR=180\nM30\n");
+  ASSERT_EQ(b.size(), 4u);
+  const auto& a1 = std::get<HelixArc>(b[1].geometry);
+  expect_point(a1.frame().centre, 0, 10, 0);  // counter-clockwise from (0, 0) to (10, 10)
+  EXPECT_NEAR(a1.sweep_rad(), std::numbers::pi / 2, 1e-12);
+  const auto& a2 = std::get<HelixArc>(b[2].geometry);
+  EXPECT_NEAR(a2.sweep_rad(), 1.5 * std::numbers::pi, 1e-9);
+  // centre and angle: from (20, 0) about (20, -10), half a circle counter-clockwise to (20, -20)
+  expect_point(b[3].end, 20, -20, 0);
+  expect_point(std::get<HelixArc>(b[3].geometry).frame().centre, 20, -10, 0);
+}
+
 TEST(GcodeSinumerik, AcAndIcOverrideTheDistanceModeOfOneWord) {
   const auto b = read("G90 G1 F100 X10 Y10\nX=IC(5) Y20\nG91 X=AC(1) Y5\nX2\nM30\n");
   ASSERT_EQ(b.size(), 4u);

@@ -70,7 +70,6 @@ constexpr Refusal refusals[] = {
     {"CHF", "chamfers between blocks (CHF=)"},
     {"CHR", "chamfers between blocks (CHR=)"},
     {"ANG", "contour definitions by angles (ANG=)"},
-    {"AR", "arcs by their opening angle (AR=)"},
     {"GOTOS", "jumps to the program start (GOTOS)"},
     {"SPATH", "SPATH"},
 };
@@ -491,7 +490,7 @@ void SinumerikFrontEnd::read_words(Words& words) {
 bool SinumerikFrontEnd::keyword_word(std::string_view name, int col, Words& words) {
   const std::string n(name);
   // addresses of several letters, with '='
-  if (cur.peek() == '=' && (name == "CR" || name == "TURN" || name == "AP" || name == "RP" || name == "ADIS" ||
+  if (cur.peek() == '=' && (name == "CR" || name == "TURN" || name == "AP" || name == "RP" || name == "AR" || name == "ADIS" ||
                             name == "ADISPOS" || name == "RPL" ||
                             (name.size() == 2 && (name[0] == 'I' || name[0] == 'J' || name[0] == 'K') &&
                              name[1] >= '1' && name[1] <= '3'))) {
@@ -510,6 +509,10 @@ bool SinumerikFrontEnd::keyword_word(std::string_view name, int col, Words& word
         path_tolerance = v;
         adis_given = true;
       }
+    } else if (name == "AR") {
+      if (words.has_arc_angle) fail(col, "word-twice", "AR=: given twice in the block");
+      words.has_arc_angle = true;
+      words.arc_angle = v;
     } else if (name == "AP" || name == "RP") {
       const unsigned bit = name == "AP" ? 1u : 2u;
       if (words.polar & bit) fail(col, "word-twice", fmt::format("{}=: given twice in the block", name));
