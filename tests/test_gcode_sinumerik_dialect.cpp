@@ -3,13 +3,13 @@
 // the same file, CR= arcs, AC / IC, the programmable frame (TRANS / ROT / MIRROR), the drilling
 // cycles CYCLE81 / 82 / 83 (also MCALL), G4 F / S, G9, and the refusals with their messages.
 #include <gtest/gtest.h>
-#include <kontur/error.hpp>
-#include <kontur/gcode/reader.hpp>
-#include <kontur/geometry/helix_arc.hpp>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <kontur/error.hpp>
+#include <kontur/gcode/reader.hpp>
+#include <kontur/geometry/helix_arc.hpp>
 #include <string>
 #include <vector>
 
@@ -183,6 +183,20 @@ TEST(GcodeSinumerik, NestedLoopsAndAFalseWhileSkipItsBody) {
   expect_point(b[3].end, 2, 2, 0);
 }
 
+TEST(GcodeSinumerik, RepeatedProgramSections) {
+  const auto b = read("R1=0\nSTART: R1=R1+1\nG1 F100 X=R1\nREPEAT START P=2\nY1\nM30\n");
+  ASSERT_EQ(b.size(), 4u);
+  EXPECT_EQ(b[2].end.x(), 3.0);
+  expect_point(b[3].end, 3, 1, 0);
+  const auto c = read(
+      "G1 F100\nA1: X1\nA2: X2\nA3: X3\nREPEAT A1 A2\nREPEATB A3 P=2\nB1: Y1\nY2\nENDLABEL: Y3\nZ1\n"
+      "REPEAT B1 P=1\nM30\n");
+  std::vector<double> v;
+  for (const auto& blk : c) v.push_back(blk.end.x() * 100 + blk.end.y() * 10 + blk.end.z());
+  const std::vector<double> expected = {100, 200, 300, 100, 200, 300, 300, 310, 320, 330, 331, 311, 321, 331};
+  EXPECT_EQ(v, expected);
+}
+
 TEST(GcodeSinumerik, AnEndlessLoopIsStoppedByTheLoopLimit) {
   ReaderOptions o = sinumerik();
   o.max_loop_iterations = 50;
@@ -213,6 +227,31 @@ TEST(GcodeSinumerik, CrArcsHaveTheirCentreAndDirection) {
   EXPECT_NEAR(std::get<HelixArc>(c[1].geometry).sweep_rad(), 2 * std::numbers::pi, 1e-12);
   expect_point(std::get<HelixArc>(c[1].geometry).frame().centre, 0, 0, 0);
   EXPECT_NEAR(std::get<HelixArc>(c[2].geometry).sweep_rad(), 6 * std::numbers::pi, 1e-12);
+}
+
+TEST(GcodeSinumerik, CipCirclesMessagesAndStopre) {
+  const auto b = read("G1 F100 X0 Y0\nMSG(\"ROUGH \" << 1)\nSTOPRE\nCIP X20 Y0 I1=10 J1=10\nMSG(\"\")\nM30\n");
+  ASSERT_EQ(b.size(), 2u);
+  ASSERT_EQ(b[1].type, BlockType::circle_3d);
+  expect_point(b[1].via[0], 10, 10, 0);
+  expect_point(b[1].end, 20, 0, 0);
+  const auto w = warnings_of("MSG(\"A\")\nMSG(\"B\")\nM30\n");
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0], "s.mpf:1:1: warning: MSG(..): messages are not shown by Kontur (warned once)");
+}
+
+TEST(GcodeSinumerik, ArcsByTheirOpeningAngle) {
+  // end point and angle: 90 degrees over a chord of 10 * sqrt(2): radius 10
+  const auto b = read("G17 G90 G1 F100 X0 Y0\nG3 X10 Y10 AR=90\nG2 X20 Y0 AR=270\nG3 I0 J-10 AR=180\nM30\n");
+  ASSERT_EQ(b.size(), 4u);
+  const auto& a1 = std::get<HelixArc>(b[1].geometry);
+  expect_point(a1.frame().centre, 0, 10, 0);  // counter-clockwise from (0, 0) to (10, 10)
+  EXPECT_NEAR(a1.sweep_rad(), std::numbers::pi / 2, 1e-12);
+  const auto& a2 = std::get<HelixArc>(b[2].geometry);
+  EXPECT_NEAR(a2.sweep_rad(), 1.5 * std::numbers::pi, 1e-9);
+  // centre and angle: from (20, 0) about (20, -10), half a circle counter-clockwise to (20, -20)
+  expect_point(b[3].end, 20, -20, 0);
+  expect_point(std::get<HelixArc>(b[3].geometry).frame().centre, 20, -10, 0);
 }
 
 TEST(GcodeSinumerik, AcAndIcOverrideTheDistanceModeOfOneWord) {
@@ -265,9 +304,10 @@ TEST(GcodeSinumerik, ScaleMakesArcsLargerAndRefusesUnevenPlanes) {
   expect_point(std::get<HelixArc>(b[2].geometry).frame().centre, 40, 0, 0);
   EXPECT_NEAR(std::get<HelixArc>(b[2].geometry).radius_mm(), 10.0, 1e-12);
   expect_point(b[3].end, 1, 1, 0);
-  EXPECT_EQ(error_of("G1 F100 X10\nSCALE X2 Y3\nG2 X20 CR=10\nM30\n"),
-            "s.mpf:3:1: G2: the programmable frame scales the arc's plane unevenly: the arc would not be a circle in the "
-            "machine");
+  EXPECT_EQ(
+      error_of("G1 F100 X10\nSCALE X2 Y3\nG2 X20 CR=10\nM30\n"),
+      "s.mpf:3:1: G2: the programmable frame scales the arc's plane unevenly: the arc would not be a circle in the "
+      "machine");
 }
 
 TEST(GcodeSinumerik, AMirroredArcTurnsTheOtherWay) {
@@ -284,9 +324,9 @@ TEST(GcodeSinumerik, PolarCoordinatesAboutThePole) {
   const auto b = read(
       "G17 G90\nG111 X10 Y10\n"
       "G1 F100 AP=90 RP=5\n"
-      "AP=180\n"   // RP stays 5 (the position's)
+      "AP=180\n"     // RP stays 5 (the position's)
       "G3 AP=270\n"  // an arc about the pole
-      "G110 X5\n"  // the pole 5 to the right of the position (10, 5)
+      "G110 X5\n"    // the pole 5 to the right of the position (10, 5)
       "G1 RP=1 AP=0 Z-1\n"
       "M30\n");
   ASSERT_EQ(b.size(), 4u);
@@ -304,7 +344,7 @@ TEST(GcodeSinumerik, CtArcsAreTangentToThePreviousMove) {
   ASSERT_EQ(b.size(), 4u);
   const auto& a1 = std::get<HelixArc>(b[2].geometry);
   expect_point(a1.frame().centre, 10, 10, 0);
-  EXPECT_GT(a1.frame().normal.z(), 0.0);  // counter-clockwise, leaving along +X
+  EXPECT_GT(a1.frame().normal.z(), 0.0);               // counter-clockwise, leaving along +X
   const auto& a2 = std::get<HelixArc>(b[3].geometry);  // CT is modal
   expect_point(a2.frame().centre, 30, 10, 0);
   EXPECT_LT(a2.frame().normal.z(), 0.0);
@@ -447,8 +487,9 @@ TEST(GcodeSinumerik, RefusalsNameTheLineTheFeatureAndTheDialect) {
             "s.mpf:2:1: POCKET4: this machining cycle of the cycle package (only CYCLE81, CYCLE82 and CYCLE83 are "
             "expanded) is not supported by Kontur (dialect sinumerik)");
   EXPECT_EQ(error_of("G0 X0 FOO\nM30\n"), "s.mpf:1:7: FOO: unknown word or keyword (dialect sinumerik)");
-  EXPECT_EQ(error_of("G0 X0 (COMMENT)\nM30\n"),
-            "s.mpf:1:7: '(': unexpected; it is not a comment on a Sinumerik (comments start with ';'; dialect sinumerik)");
+  EXPECT_EQ(
+      error_of("G0 X0 (COMMENT)\nM30\n"),
+      "s.mpf:1:7: '(': unexpected; it is not a comment on a Sinumerik (comments start with ';'; dialect sinumerik)");
   EXPECT_EQ(error_of("G1 X=UNDEF\nM30\n"), "s.mpf:1:6: UNDEF: variable not defined (DEF it first)");
   EXPECT_EQ(error_of("IF R1==1\nG0 X1\nM30\n"), "s.mpf:1:1: IF: ENDIF not found before the end of the program");
   EXPECT_EQ(error_of("WHILE TRUE\nG0 X1\n"), "s.mpf:1:1: WHILE: the program ends inside it (ENDWHILE missing)");
@@ -484,7 +525,7 @@ TEST(GcodeSinumerik, ARealisticProgramWithItsHeader) {
   Block blk;
   while (reader.next(blk)) b.push_back(blk);
   ASSERT_EQ(b.size(), 1u + 4u * 4u + 7u);
-  expect_point(b[1 + 4 * 1].end, 0, 20, 50);   // the second hole's position
+  expect_point(b[1 + 4 * 1].end, 0, 20, 50);  // the second hole's position
   expect_point(b[1 + 4 * 1 + 2].end, 0, 20, -10);
   const Block& arc = b[1 + 16 + 3];
   ASSERT_EQ(arc.type, BlockType::arc);

@@ -118,25 +118,34 @@ void Executor::arc(bool clockwise, const Vec3& to, int col) {
   // ROT, MIRROR, SCALE) that maps the arc's plane by a similarity (a mirror turns it the other way
   // round, a scale k makes its radius k times)
   const Eigen::Matrix3d lin = rotation();
-  const Vec3 u1 = lin * f.e1, u2 = lin * f.e2, un = lin * f.normal;
-  const double k = u1.norm();
-  if (std::abs(u2.norm() - k) > 1e-9 * k || std::abs(u1.dot(u2)) > 1e-9 * k * k ||
-      un.cross(u1.cross(u2)).norm() > 1e-9 * un.norm() * k * k)
-    fail(col, "arc-frame",
-         fmt::format("{}: the programmable frame scales the arc's plane unevenly: the arc would not be a circle in "
-                     "the machine",
-                     word));
   CircleFrame mf;
   mf.centre = to_machine(f.centre);
-  mf.e1 = u1 / k;
-  mf.e2 = u2 / k;
-  mf.normal = mf.e1.cross(mf.e2);
-  const double machine_rise = rise * un.dot(mf.normal);
+  double k = 1.0;
+  double machine_rise = rise;
+  if (!frames.programmable_linear_set()) {  // rigid: a rotation about Z
+    mf.e1 = lin * f.e1;
+    mf.e2 = lin * f.e2;
+    mf.normal = lin * f.normal;
+  } else {
+    const Vec3 u1 = lin * f.e1, u2 = lin * f.e2, un = lin * f.normal;
+    k = u1.norm();
+    if (std::abs(u2.norm() - k) > 1e-9 * k || std::abs(u1.dot(u2)) > 1e-9 * k * k ||
+        un.cross(u1.cross(u2)).norm() > 1e-9 * un.norm() * k * k)
+      fail(col, "arc-frame",
+           fmt::format("{}: the programmable frame scales the arc's plane unevenly: the arc would not be a circle in "
+                       "the machine",
+                       word));
+    mf.e1 = u1 / k;
+    mf.e2 = u2 / k;
+    mf.normal = mf.e1.cross(mf.e2);
+    machine_rise = rise * un.dot(mf.normal);
+  }
   Block b = make_block(std::abs(rise) > 0.0 ? BlockType::helix : BlockType::arc, col);
   b.start = to_machine(pos);
   b.end = to_machine(to);
   b.feed = feed;
-  b.geometry.emplace<HelixArc>(at(col, word, [&] { return HelixArc(mf, r_start * k, sweep, machine_rise, (r_end - r_start) * k); }));
+  b.geometry.emplace<HelixArc>(
+      at(col, word, [&] { return HelixArc(mf, r_start * k, sweep, machine_rise, (r_end - r_start) * k); }));
   emit(std::move(b));
   pos = to;
 }

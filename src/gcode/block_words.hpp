@@ -48,6 +48,9 @@ struct Words {
   double polar_angle = 0.0, polar_radius = 0.0;
   int polar_column = 0;
   int pole_g = 0;
+  // Sinumerik AR=: the arc's opening angle [deg], with the end point or with the centre.
+  bool has_arc_angle = false;
+  double arc_angle = 0.0;
   double frame_rpl = 0.0;
   bool frame_has_rpl = false;
 
@@ -66,6 +69,7 @@ struct Words {
     polar = 0;
     polar_column = 0;
     pole_g = 0;
+    has_arc_angle = false;
   }
   [[nodiscard]] bool has(char letter) const noexcept { return (present >> (letter - 'A')) & 1u; }
   [[nodiscard]] double get(char letter) const noexcept { return value[static_cast<std::size_t>(letter - 'A')]; }

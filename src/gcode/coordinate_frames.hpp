@@ -50,6 +50,8 @@ public:
     frame_translation_ = translation;
   }
   [[nodiscard]] const Eigen::Matrix3d& programmable_linear() const noexcept { return frame_linear_; }
+  /// True if the programmable frame rotates, mirrors or scales (its linear part is not the identity).
+  [[nodiscard]] bool programmable_linear_set() const noexcept { return !frame_linear_.isIdentity(0.0); }
   [[nodiscard]] const Vec3& programmable_translation() const noexcept { return frame_translation_; }
 
   // ---- G10 L2 / L20

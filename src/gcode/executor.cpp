@@ -332,7 +332,11 @@ void Executor::move(int motion, int col, bool machine_coordinates, int motion_wo
   switch (motion) {
     case 0: line_move(BlockType::rapid, to, col, Feed{}); prev_g5 = false; return;
     case 10: line_move(BlockType::line, to, col, feed_move("G1")); prev_g5 = false; return;
-    case 20: case 30: arc(motion == 20, to, col); prev_g5 = false; return;
+    case 20: case 30:
+      if (w->has_arc_angle) arc_by_angle(motion == 20, to, col);
+      else arc(motion == 20, to, col);
+      prev_g5 = false;
+      return;
     case 50: case 51: bezier(motion == 50, to, col); return;
     case 52: start_g52(col); return;
     case 62: start_g62(col, motion_word); return;

@@ -327,6 +327,9 @@ private:
   Vec3 polar_target(const Vec3& t) const;
   // CT: an arc from the position to `to`, tangent to the previous move
   void tangent_arc(const Vec3& to, int col);
+  // G2 / G3 with AR= (opening angle): with the end point (the radius follows) or with I J K (the
+  // end point follows)
+  void arc_by_angle(bool clockwise, const Vec3& to, int col);
 };
 
 }  // namespace kontur::gcode::detail

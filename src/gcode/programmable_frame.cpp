@@ -5,9 +5,9 @@
 // would be an ellipse: arc() refuses it. Also Sinumerik's
 // polar coordinates (the pole of G110 / G111 / G112, targets from AP= / RP=) and CT, the arc
 // tangent to the previous move.
-#include "executor.hpp"
-
 #include <cmath>
+
+#include "executor.hpp"
 
 namespace kontur::gcode::detail {
 
@@ -18,8 +18,9 @@ void Executor::programmable_frame() {
   const int col = w->frame_column > 0 ? w->frame_column : block_column();
   for (char c = 'A'; c <= 'Z'; ++c)
     if (w->has(c) && c != 'X' && c != 'Y' && c != 'Z')
-      fail(w->col(c), "frame-words", fmt::format("{}: {} is not allowed in a frame block (X Y Z{} only)", word, c,
-                                                 op == FrameOp::rot || op == FrameOp::arot ? " RPL=" : ""));
+      fail(w->col(c), "frame-words",
+           fmt::format("{}: {} is not allowed in a frame block (X Y Z{} only)", word, c,
+                       op == FrameOp::rot || op == FrameOp::arot ? " RPL=" : ""));
   if (w->g_count > 0 || w->m_count > 0 || w->keyword != Keyword::none)
     fail(col, "frame-words", fmt::format("{}: a frame instruction stands in a block of its own", word));
   const Vec3 machine = to_machine(pos);
@@ -73,7 +74,8 @@ void Executor::programmable_frame() {
         if (!w->has(letter)) continue;
         const double f = w->get(letter);
         if (!(std::abs(f) > 1e-9) || std::abs(f) > 1e6)
-          fail(w->col(letter), "frame-words", fmt::format("{} {}{}: a scale factor must not be 0", word, letter, num(f)));
+          fail(w->col(letter), "frame-words",
+               fmt::format("{} {}{}: a scale factor must not be 0", word, letter, num(f)));
         m(axis, axis) = f;
       }
       if (op == FrameOp::scale) {
@@ -98,7 +100,8 @@ void Executor::programmable_frame() {
       }
       break;
     }
-    default: fail(col, "internal", "frame operation not handled");
+    default:
+      fail(col, "internal", "frame operation not handled");
   }
   if ((op == FrameOp::trans || op == FrameOp::rot || op == FrameOp::mirror || op == FrameOp::scale) && !any) {
     a.setIdentity();  // TRANS / ROT / MIRROR alone: no programmable frame
@@ -117,7 +120,9 @@ void Executor::define_pole() {
   const std::string word = g_name(w->pole_g * 10);
   if (w->polar != 0)
     fail(col, "unsupported",
-         fmt::format("{} with AP= / RP=: a pole given in polar coordinates is not supported by Kontur (dialect sinumerik)", word));
+         fmt::format(
+             "{} with AP= / RP=: a pole given in polar coordinates is not supported by Kontur (dialect sinumerik)",
+             word));
   if (w->g_count > 1 || w->m_count > 0 || w->keyword != Keyword::none)
     fail(col, "pole", fmt::format("{}: a pole is defined in a block of its own", word));
   const PlaneAxes pa = plane_axes(modal.plane);
@@ -202,6 +207,53 @@ void Executor::tangent_arc(const Vec3& to, int col) {
     throw;
   }
   w = block;
+}
+
+void Executor::arc_by_angle(bool clockwise, const Vec3& to, int col) {
+  const std::string word = clockwise ? "G2" : "G3";
+  const double ar = w->arc_angle;
+  if (!(ar > 0.0 && ar < 360.0))
+    fail(col, "arc-angle", fmt::format("{} AR={}: the opening angle must be between 0 and 360 degrees", word, num(ar)));
+  if (w->has('R')) fail(w->col('R'), "arc-angle", fmt::format("{}: AR= and CR= in one block: give one of them", word));
+  const PlaneAxes pa = plane_axes(modal.plane);
+  const char offset_letter[3] = {'I', 'J', 'K'};
+  const Vec3 n = unit(pa.n);
+  const double a = ar * pi / 180.0;
+  const bool has_ijk = w->has(offset_letter[pa.a1]) || w->has(offset_letter[pa.a2]);
+  const Vec3 s_p = pos - pos.dot(n) * n, e_p = to - to.dot(n) * n;
+  if (!has_ijk) {  // the end point and the angle: the radius (negative beyond 180 degrees)
+    const double c = (e_p - s_p).norm();
+    if (c <= tolerances::gcode_same_point_mm)
+      fail(col, "arc-angle", fmt::format("{} AR={}: the end point is the start point", word, num(ar)));
+    const double r = c / (2.0 * std::sin(a / 2.0));
+    Words radius_words = *w;
+    radius_words.has_arc_angle = false;
+    radius_words.set('R', (ar > 180.0 ? -r : r) / scale(), col);
+    const Words* block = w;
+    w = &radius_words;
+    try {
+      arc(clockwise, to, col);
+    } catch (...) {
+      w = block;
+      throw;
+    }
+    w = block;
+    return;
+  }
+  // the centre and the angle: the end point is the start turned by AR about the centre
+  if ((e_p - s_p).norm() > 0.0 || (to - pos).dot(n) != 0.0)
+    fail(col, "arc-angle",
+         fmt::format("{} AR=: the centre, the end point and the angle over-determine the arc: give two of them", word));
+  const Vec3 e_a1 = unit(pa.a1), e_a2 = unit(pa.a2);
+  const double i1 = w->has(offset_letter[pa.a1]) ? w->get(offset_letter[pa.a1]) * scale() : 0.0;
+  const double i2 = w->has(offset_letter[pa.a2]) ? w->get(offset_letter[pa.a2]) * scale() : 0.0;
+  const bool abs1 = w->absolute(offset_letter[pa.a1], modal.arc_distance == DistanceMode::absolute);
+  const bool abs2 = w->absolute(offset_letter[pa.a2], modal.arc_distance == DistanceMode::absolute);
+  const Vec3 centre = (abs1 ? i1 : s_p.dot(e_a1) + i1) * e_a1 + (abs2 ? i2 : s_p.dot(e_a2) + i2) * e_a2;
+  const Vec3 v = s_p - centre;
+  const double turn = clockwise ? -a : a;
+  const Vec3 end = centre + v * std::cos(turn) + n.cross(v) * std::sin(turn) + pos.dot(n) * n;
+  arc(clockwise, end, col);
 }
 
 }  // namespace kontur::gcode::detail

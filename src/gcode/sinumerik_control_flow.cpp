@@ -3,13 +3,13 @@
 // REPEAT / UNTIL, LOOP / ENDLOOP, and subprograms of the same file (PROC NAME or a
 // %_N_NAME_SPF section) called by name, with M17 / RET. Loops, jumps back and calls count
 // against ReaderOptions::max_loop_iterations (an endless loop is an error, not a hang).
-#include "message_format.hpp"
-#include "sinumerik_front_end.hpp"
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+
+#include "message_format.hpp"
+#include "sinumerik_front_end.hpp"
 
 namespace kontur::gcode::detail {
 namespace {
@@ -21,7 +21,8 @@ bool is_close(std::string_view kw) {
   return kw == "ENDIF" || kw == "ENDWHILE" || kw == "ENDFOR" || kw == "UNTIL" || kw == "ENDLOOP";
 }
 const char* kind_name(int k) {
-  static constexpr const char* names[] = {"IF", "WHILE", "FOR", "REPEAT", "LOOP", "a subprogram call"};
+  static constexpr const char* names[] = {
+      "IF", "WHILE", "FOR", "REPEAT", "LOOP", "a subprogram call", "a repeated section"};
   return names[k];
 }
 
@@ -44,6 +45,7 @@ std::string SinumerikFrontEnd::scan_keyword(bool& single_if, Head& head) {
   head = read_head(c, true);
   if (head.deleted) return {};
   std::string kw(identifier(c));
+  if (kw == "REPEAT" && !c.end()) return "REPEAT_SECTION";  // REPEAT label: no loop to close
   if (kw == "IF") {
     while (!c.end()) {
       const std::string_view id = identifier(c);
@@ -82,7 +84,8 @@ std::string SinumerikFrontEnd::skip_to(const char* open, const char* middle, con
     if (depth == 0 && (kw == close || (middle && kw == middle))) return kw;
     if (kw == close) --depth;
   }
-  diag.fail_at_line(from, 1, "control-flow", fmt::format("{}: {} not found before the end of the program", open, close));
+  diag.fail_at_line(from, 1, "control-flow",
+                    fmt::format("{}: {} not found before the end of the program", open, close));
 }
 
 // ---------------------------------------------------------------- jumps
@@ -105,10 +108,13 @@ bool SinumerikFrontEnd::scan_forward(const std::string& label, long number) {
       return true;
     }
     if (kw == "PROC") break;
-    if (is_open(kw, single_if)) ++depth;
+    if (is_open(kw, single_if))
+      ++depth;
     else if (is_close(kw)) {
-      if (depth > 0) --depth;
-      else if (!frames.empty() && frames.back().kind != FKind::call) frames.pop_back();  // the jump leaves it
+      if (depth > 0)
+        --depth;
+      else if (!frames.empty() && frames.back().kind != FKind::call)
+        frames.pop_back();  // the jump leaves it
     }
   }
   frames = saved;
@@ -144,7 +150,8 @@ bool SinumerikFrontEnd::scan_backward(const std::string& label, long number) {
   }
   if (!found) return false;
   // loops and conditionals that start after the target are left
-  while (!frames.empty() && frames.back().kind != FKind::call && frames.back().offset > target.offset) frames.pop_back();
+  while (!frames.empty() && frames.back().kind != FKind::call && frames.back().offset > target.offset)
+    frames.pop_back();
   loop_guard(label.empty() ? "GOTOB" : label.c_str());
   in().seek(target.offset, target.line);
   return true;
@@ -161,7 +168,8 @@ void SinumerikFrontEnd::jump(std::string_view how_text, Cursor& c, int col) {
   } else {
     const std::string id(identifier(c));
     if (id.empty()) fail(tcol, "syntax", fmt::format("{}: a label or block number expected", how));
-    if (id.size() > 1 && id[0] == 'N' && std::all_of(id.begin() + 1, id.end(), [](char d) { return d >= '0' && d <= '9'; }))
+    if (id.size() > 1 && id[0] == 'N' &&
+        std::all_of(id.begin() + 1, id.end(), [](char d) { return d >= '0' && d <= '9'; }))
       number = std::strtol(id.c_str() + 1, nullptr, 10);
     else
       label = id;
@@ -169,13 +177,18 @@ void SinumerikFrontEnd::jump(std::string_view how_text, Cursor& c, int col) {
   if (!c.end()) fail(c.col(), "syntax", fmt::format("'{}': unexpected after the jump target", c.t.substr(c.p, 16)));
   const std::string target = label.empty() ? fmt::format("N{}", number) : label;
   bool found = false;
-  if (how == "GOTOF") found = scan_forward(label, number);
-  else if (how == "GOTOB") found = scan_backward(label, number);
-  else found = scan_forward(label, number) || scan_backward(label, number);
+  if (how == "GOTOF")
+    found = scan_forward(label, number);
+  else if (how == "GOTOB")
+    found = scan_backward(label, number);
+  else
+    found = scan_forward(label, number) || scan_backward(label, number);
   if (found || how == "GOTOC") return;
   fail(col, "jump-target",
        fmt::format("{} {}: jump target not found {}", how, target,
-                   how == "GOTOF" ? "after this line" : how == "GOTOB" ? "before this line" : "in the program"));
+                   how == "GOTOF"   ? "after this line"
+                   : how == "GOTOB" ? "before this line"
+                                    : "in the program"));
 }
 
 // ---------------------------------------------------------------- IF, loops, RET
@@ -189,7 +202,9 @@ void SinumerikFrontEnd::control(std::string_view kw_text, Cursor& c, int col) {
     if (frames.empty() || frames.back().kind != kind)
       fail(col, "control-flow",
            fmt::format("{}: no open {}{}", what, opener,
-                       frames.empty() ? "" : fmt::format(" (the innermost open construct is {})", kind_name(static_cast<int>(frames.back().kind)))));
+                       frames.empty() ? ""
+                                      : fmt::format(" (the innermost open construct is {})",
+                                                    kind_name(static_cast<int>(frames.back().kind)))));
     return frames.back();
   };
   if (kw == "DEF") {
@@ -243,8 +258,10 @@ void SinumerikFrontEnd::control(std::string_view kw_text, Cursor& c, int col) {
     end_of_line("the WHILE condition");
     const bool running = !frames.empty() && frames.back().kind == FKind::while_ && frames.back().offset == here;
     if (cond != 0.0) {
-      if (running) loop_guard("WHILE");
-      else frames.push_back(Frame{FKind::while_, here, line});
+      if (running)
+        loop_guard("WHILE");
+      else
+        frames.push_back(Frame{FKind::while_, here, line});
     } else {
       if (running) frames.pop_back();
       skip_to("WHILE", nullptr, "ENDWHILE");
@@ -264,7 +281,8 @@ void SinumerikFrontEnd::control(std::string_view kw_text, Cursor& c, int col) {
     const Variable* v = find_var(name);
     const bool r_param = name.size() > 1 && name[0] == 'R' &&
                          std::all_of(name.begin() + 1, name.end(), [](char d) { return d >= '0' && d <= '9'; });
-    if (!v && !r_param) fail(vcol, "undefined-variable", fmt::format("FOR {}: variable not defined (DEF INT {})", name, name));
+    if (!v && !r_param)
+      fail(vcol, "undefined-variable", fmt::format("FOR {}: variable not defined (DEF INT {})", name, name));
     if (v && (v->type != VarType::integer && v->type != VarType::real))
       fail(vcol, "syntax", fmt::format("FOR {}: the counter is an INT or REAL variable or an R parameter", name));
     if (!c.eat('=')) fail(c.col(), "syntax", fmt::format("FOR {}: '=' expected", name));
@@ -300,11 +318,11 @@ void SinumerikFrontEnd::control(std::string_view kw_text, Cursor& c, int col) {
     }
     return;
   }
-  if (kw == "REPEAT") {
-    if (!c.end())
-      fail(c.col(), "unsupported",
-           "REPEAT with a label: repeating a program section is not supported by Kontur (dialect sinumerik); REPEAT "
-           "alone opens a REPEAT .. UNTIL loop");
+  if (kw == "REPEAT" || kw == "REPEATB") {
+    if (!c.end() || kw == "REPEATB") {
+      repeat_section(c, col, kw == "REPEATB");
+      return;
+    }
     frames.push_back(Frame{FKind::repeat, in().tell(), line + 1});
     return;
   }
@@ -344,6 +362,66 @@ void SinumerikFrontEnd::control(std::string_view kw_text, Cursor& c, int col) {
   fail(col, "internal", fmt::format("{}: statement not handled", kw));
 }
 
+// ---------------------------------------------------------------- program sections
+
+void SinumerikFrontEnd::repeat_section(Cursor& c, int col, bool single) {
+  const char* kw = single ? "REPEATB" : "REPEAT";
+  const std::string start(identifier(c));
+  if (start.empty()) fail(c.col(), "syntax", fmt::format("{}: a label expected", kw));
+  std::string end_label;
+  {
+    Cursor look = c;
+    const std::string id(identifier(look));
+    if (!id.empty() && !(id == "P" && look.peek() == '=')) {
+      if (single) fail(c.col(), "syntax", "REPEATB: one label (the block repeated)");
+      end_label = id;
+      c = look;
+    }
+  }
+  long times = 1;
+  if (identifier(c) == "P") {
+    if (!c.eat('=')) fail(c.col(), "syntax", fmt::format("{} {} P: '=' expected", kw, start));
+    const double p = expr(c);
+    if (p < 1.0 || p != std::floor(p) || p > static_cast<double>(opt.max_loop_iterations))
+      fail(col, "syntax", fmt::format("{} {} P={}: the repetitions are an integer >= 1", kw, start, num(p)));
+    times = static_cast<long>(p);
+  }
+  if (!c.end()) fail(c.col(), "syntax", fmt::format("'{}': unexpected after {}", c.t.substr(c.p, 16), kw));
+  const std::size_t here = in().line_start();
+  const auto it = labels.find(start);
+  if (it == labels.end() || it->second.offset >= here)
+    fail(col, "jump-target", fmt::format("{} {}: label not found before this line", kw, start));
+  if (!end_label.empty()) {
+    const auto e = labels.find(end_label);
+    if (e == labels.end() || e->second.offset >= here || e->second.offset < it->second.offset)
+      fail(col, "jump-target",
+           fmt::format("{} {} {}: the end label is not between the start label and this line", kw, start, end_label));
+  }
+  Frame f{FKind::section, it->second.offset, it->second.line};
+  f.var = end_label;
+  f.single = single;
+  f.repeats = times;
+  f.stop_offset = here;
+  f.ret_offset = in().tell();
+  f.ret_line = diag.line() + 1;
+  loop_guard(kw);
+  frames.push_back(std::move(f));
+  in().seek(frames.back().offset, frames.back().line);
+}
+
+void SinumerikFrontEnd::end_section() {
+  Frame& f = frames.back();
+  if (--f.repeats > 0) {
+    loop_guard("REPEAT");
+    in().seek(f.offset, f.line);
+    return;
+  }
+  const std::size_t offset = f.ret_offset;
+  const long line = f.ret_line;
+  frames.pop_back();
+  in().seek(offset, line);
+}
+
 // ---------------------------------------------------------------- subprograms
 
 void SinumerikFrontEnd::call(const std::string& name, Cursor& c, int col) {
@@ -351,8 +429,10 @@ void SinumerikFrontEnd::call(const std::string& name, Cursor& c, int col) {
   if (c.eat('(')) {
     if (!c.eat(')')) {
       for (;;) {
-        if (c.peek() == ',' || c.peek() == ')') args.push_back(0.0);  // an argument left out
-        else args.push_back(expr(c));
+        if (c.peek() == ',' || c.peek() == ')')
+          args.push_back(0.0);  // an argument left out
+        else
+          args.push_back(expr(c));
         if (c.eat(')')) break;
         if (!c.eat(',')) fail(c.col(), "syntax", fmt::format("{}(: ',' or ')' expected", name));
       }
@@ -367,7 +447,8 @@ void SinumerikFrontEnd::call(const std::string& name, Cursor& c, int col) {
       fail(col, "syntax", fmt::format("{} P{}: the repetitions are an integer >= 1", name, num(p)));
     repeats = static_cast<long>(p);
   }
-  if (!c.end()) fail(c.col(), "syntax", fmt::format("'{}': unexpected after the call of {}", c.t.substr(c.p, 16), name));
+  if (!c.end())
+    fail(c.col(), "syntax", fmt::format("'{}': unexpected after the call of {}", c.t.substr(c.p, 16), name));
   const std::size_t return_offset = in().tell();
   const long return_line = diag.line() + 1;
   const auto known = procs.find(name);
@@ -384,7 +465,8 @@ void SinumerikFrontEnd::call(const std::string& name, Cursor& c, int col) {
   if (external_file && !external) (void)open_external(name, col);  // called again
   const Proc& p = procs.at(name);
   if (args.size() > p.params.size())
-    fail(col, "syntax", fmt::format("{}: {} arguments given, the subprogram has {} parameters", name, args.size(), p.params.size()));
+    fail(col, "syntax",
+         fmt::format("{}: {} arguments given, the subprogram has {} parameters", name, args.size(), p.params.size()));
   loop_guard(name.c_str());
   if (frames.size() >= 64) fail(col, "control-flow", fmt::format("{}: calls nested more than 64 deep", name));
   Frame f{FKind::call, return_offset, return_line};
@@ -406,8 +488,10 @@ void SinumerikFrontEnd::enter_proc(const Frame& f, bool fresh) {
     v.value = store(v.type, i < f.args.size() ? f.args[i] : 0.0);
     scope[p.params[i].second] = std::move(v);
   }
-  if (fresh) scopes.push_back(std::move(scope));
-  else scopes.back() = std::move(scope);
+  if (fresh)
+    scopes.push_back(std::move(scope));
+  else
+    scopes.back() = std::move(scope);
   in().seek(p.start.offset, p.start.line);
 }
 
@@ -439,7 +523,9 @@ bool SinumerikFrontEnd::open_external(const std::string& name, int col) {
   namespace fs = std::filesystem;
   if (external)
     fail(col, "unsupported",
-         fmt::format("{}: a subprogram file calling another subprogram file is not supported by Kontur (dialect sinumerik)", name));
+         fmt::format(
+             "{}: a subprogram file calling another subprogram file is not supported by Kontur (dialect sinumerik)",
+             name));
   const fs::path dir = fs::path(main_name).parent_path();
   std::string lower = name;
   for (char& ch : lower) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
@@ -476,7 +562,8 @@ bool SinumerikFrontEnd::open_external(const std::string& name, int col) {
       const int pcol = c.col();
       const std::string pname(identifier(c));
       if (pname != name)
-        fail(pcol, "syntax", fmt::format("PROC {}: the file {} is called as the subprogram {}", pname, found.string(), name));
+        fail(pcol, "syntax",
+             fmt::format("PROC {}: the file {} is called as the subprogram {}", pname, found.string(), name));
       proc.params = proc_params(c);
       proc.start = Position{external->tell(), diag.line() + 1};
     }
@@ -503,11 +590,17 @@ std::vector<std::pair<SinumerikFrontEnd::VarType, std::string>> SinumerikFrontEn
     std::string_view type_name = identifier(c);
     if (type_name == "VAR") type_name = identifier(c);
     VarType type = VarType::real;
-    if (type_name == "REAL") type = VarType::real;
-    else if (type_name == "INT") type = VarType::integer;
-    else if (type_name == "BOOL") type = VarType::boolean;
-    else if (type_name == "CHAR") type = VarType::character;
-    else fail(col, "unsupported", fmt::format("PROC: parameters of type {} are not supported (REAL INT BOOL CHAR)", type_name));
+    if (type_name == "REAL")
+      type = VarType::real;
+    else if (type_name == "INT")
+      type = VarType::integer;
+    else if (type_name == "BOOL")
+      type = VarType::boolean;
+    else if (type_name == "CHAR")
+      type = VarType::character;
+    else
+      fail(col, "unsupported",
+           fmt::format("PROC: parameters of type {} are not supported (REAL INT BOOL CHAR)", type_name));
     const std::string name(identifier(c));
     if (name.empty()) fail(c.col(), "syntax", "PROC: a parameter name expected");
     out.emplace_back(type, name);
@@ -555,7 +648,8 @@ void SinumerikFrontEnd::define_proc(Cursor& c, int col, bool as_main) {
   auto params_of = proc_params(c);
   if (as_main) {  // a subprogram file read on its own: its parameters are 0
     if (!params_of.empty())
-      diag.warn(col, fmt::format("PROC {}: read as a program of its own; its {} parameters are 0", name, params_of.size()));
+      diag.warn(col,
+                fmt::format("PROC {}: read as a program of its own; its {} parameters are 0", name, params_of.size()));
     for (const auto& [type, pname] : params_of) {
       Variable v;
       v.type = type;

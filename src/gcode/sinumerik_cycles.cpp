@@ -4,13 +4,12 @@
 // to the depth (in steps for CYCLE83), G0 back to the retract plane. Z is absolute whatever G90 /
 // G91 say (the cycle's planes are absolute); the G0 / G1 / G2 / G3 mode before the cycle is the
 // motion mode after it (the cycles keep the caller's modal state).
-#include "message_format.hpp"
-#include "sinumerik_front_end.hpp"
-
-#include <kontur/tolerances.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <kontur/tolerances.hpp>
+
+#include "message_format.hpp"
+#include "sinumerik_front_end.hpp"
 
 namespace kontur::gcode::detail {
 
@@ -19,11 +18,13 @@ std::vector<std::optional<double>> SinumerikFrontEnd::cycle_arguments(Cursor& c,
   if (!c.eat('(')) fail(c.col(), "syntax", fmt::format("{}: '(' and the cycle's parameters expected", name));
   if (c.eat(')')) return a;
   for (;;) {
-    if (c.peek() == ',' || c.peek() == ')') a.emplace_back();
+    if (c.peek() == ',' || c.peek() == ')')
+      a.emplace_back();
     else if (c.peek() == '"') {
       (void)string_literal(c);
       a.emplace_back();
-    } else a.emplace_back(expr(c));
+    } else
+      a.emplace_back(expr(c));
     if (c.eat(')')) break;
     if (!c.eat(',')) fail(c.col(), "syntax", fmt::format("{}(: ',' or ')' expected", name));
   }
@@ -40,22 +41,28 @@ bool SinumerikFrontEnd::cycle_call(std::string_view name, Cursor& c, int col, Wo
 void SinumerikFrontEnd::expand_cycle(std::string_view name, const std::vector<std::optional<double>>& a, int col) {
   auto arg = [&](std::size_t i) -> std::optional<double> { return i < a.size() ? a[i] : std::nullopt; };
   if (plane_g != 170)
-    fail(col, "cycle-plane", fmt::format("{}: drilling cycles only in the XY plane (G17) in Kontur (dialect sinumerik)", name));
+    fail(col, "cycle-plane",
+         fmt::format("{}: drilling cycles only in the XY plane (G17) in Kontur (dialect sinumerik)", name));
   if (!arg(0) || !arg(1))
     fail(col, "cycle-words", fmt::format("{}: RTP (retract plane) and RFP (reference plane) are needed", name));
   const double rtp = *arg(0), rfp = *arg(1);
   const double sdis = std::abs(arg(2).value_or(0.0));
   double dp = 0.0;
-  if (arg(4)) dp = rfp - std::abs(*arg(4));  // DPR wins over DP, as on the control
-  else if (arg(3)) dp = *arg(3);
-  else fail(col, "cycle-words", fmt::format("{}: DP (depth) or DPR (depth below the reference plane) missing", name));
+  if (arg(4))
+    dp = rfp - std::abs(*arg(4));  // DPR wins over DP, as on the control
+  else if (arg(3))
+    dp = *arg(3);
+  else
+    fail(col, "cycle-words", fmt::format("{}: DP (depth) or DPR (depth below the reference plane) missing", name));
   const double start = rfp + sdis;
   if (!(dp < start))
-    fail(col, "cycle-depth", fmt::format("{}: the depth {} is not below the reference plane plus safety distance {}", name,
-                                         num(dp), num(start)));
+    fail(col, "cycle-depth",
+         fmt::format("{}: the depth {} is not below the reference plane plus safety distance {}", name, num(dp),
+                     num(start)));
   if (rtp < start)
-    fail(col, "cycle-depth", fmt::format("{}: the retract plane {} is below the reference plane plus safety distance {}",
-                                         name, num(rtp), num(start)));
+    fail(col, "cycle-depth",
+         fmt::format("{}: the retract plane {} is below the reference plane plus safety distance {}", name, num(rtp),
+                     num(start)));
   auto move = [&](int g, double z) {
     Words w;
     w.add_g(g, col);
@@ -84,8 +91,10 @@ void SinumerikFrontEnd::expand_cycle(std::string_view name, const std::vector<st
       fail(col, "cycle-words", fmt::format("CYCLE83: VARI={}: 0 (chip breaking) or 1 (chip removal)", vari));
     const double dam = std::abs(arg(7).value_or(0.0));
     double first_depth = dp;
-    if (arg(6)) first_depth = rfp - std::abs(*arg(6));  // FDPR wins over FDEP
-    else if (arg(5)) first_depth = *arg(5);
+    if (arg(6))
+      first_depth = rfp - std::abs(*arg(6));  // FDPR wins over FDEP
+    else if (arg(5))
+      first_depth = *arg(5);
     first_depth = std::max(first_depth, dp);
     double step = rfp - first_depth;
     if (!(step > 0.0)) fail(col, "cycle-peck", "CYCLE83: the first drilling depth is not below the reference plane");

@@ -4,12 +4,12 @@
 // R parameters (`R1`, `R[R2]`), DEF variables (`NAME`, `NAME[i]`), TRUE / FALSE, and the
 // functions SIN COS TAN ASIN ACOS ATAN2 SQRT ABS POT TRUNC ROUND ROUNDUP MINVAL MAXVAL BOUND EXP
 // LN (angles in degrees).
-#include "message_format.hpp"
-#include "sinumerik_front_end.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+
+#include "message_format.hpp"
+#include "sinumerik_front_end.hpp"
 
 namespace kontur::gcode::detail {
 namespace {
@@ -85,13 +85,30 @@ double SinumerikFrontEnd::compare(Cursor& c) {
   for (;;) {
     c.ws();
     const auto rest = c.t.substr(c.p);
-    if (rest.starts_with("==")) { c.p += 2; v = equal(v, concat(c)) ? 1.0 : 0.0; }
-    else if (rest.starts_with("<>")) { c.p += 2; v = equal(v, concat(c)) ? 0.0 : 1.0; }
-    else if (rest.starts_with("<=")) { c.p += 2; const double b = concat(c); v = (v < b || equal(v, b)) ? 1.0 : 0.0; }
-    else if (rest.starts_with(">=")) { c.p += 2; const double b = concat(c); v = (v > b || equal(v, b)) ? 1.0 : 0.0; }
-    else if (rest.starts_with("<") && !rest.starts_with("<<")) { ++c.p; const double b = concat(c); v = (v < b && !equal(v, b)) ? 1.0 : 0.0; }
-    else if (rest.starts_with(">")) { ++c.p; const double b = concat(c); v = (v > b && !equal(v, b)) ? 1.0 : 0.0; }
-    else return v;
+    if (rest.starts_with("==")) {
+      c.p += 2;
+      v = equal(v, concat(c)) ? 1.0 : 0.0;
+    } else if (rest.starts_with("<>")) {
+      c.p += 2;
+      v = equal(v, concat(c)) ? 0.0 : 1.0;
+    } else if (rest.starts_with("<=")) {
+      c.p += 2;
+      const double b = concat(c);
+      v = (v < b || equal(v, b)) ? 1.0 : 0.0;
+    } else if (rest.starts_with(">=")) {
+      c.p += 2;
+      const double b = concat(c);
+      v = (v > b || equal(v, b)) ? 1.0 : 0.0;
+    } else if (rest.starts_with("<") && !rest.starts_with("<<")) {
+      ++c.p;
+      const double b = concat(c);
+      v = (v < b && !equal(v, b)) ? 1.0 : 0.0;
+    } else if (rest.starts_with(">")) {
+      ++c.p;
+      const double b = concat(c);
+      v = (v > b && !equal(v, b)) ? 1.0 : 0.0;
+    } else
+      return v;
   }
 }
 
@@ -132,28 +149,34 @@ double SinumerikFrontEnd::logic_and(Cursor& c) {
 
 double SinumerikFrontEnd::bit_or(Cursor& c) {
   double v = bit_xor(c);
-  while (eat_keyword(c, "B_OR")) v = static_cast<double>(static_cast<long long>(v) | static_cast<long long>(bit_xor(c)));
+  while (eat_keyword(c, "B_OR"))
+    v = static_cast<double>(static_cast<long long>(v) | static_cast<long long>(bit_xor(c)));
   return v;
 }
 
 double SinumerikFrontEnd::bit_xor(Cursor& c) {
   double v = bit_and(c);
-  while (eat_keyword(c, "B_XOR")) v = static_cast<double>(static_cast<long long>(v) ^ static_cast<long long>(bit_and(c)));
+  while (eat_keyword(c, "B_XOR"))
+    v = static_cast<double>(static_cast<long long>(v) ^ static_cast<long long>(bit_and(c)));
   return v;
 }
 
 double SinumerikFrontEnd::bit_and(Cursor& c) {
   double v = additive(c);
-  while (eat_keyword(c, "B_AND")) v = static_cast<double>(static_cast<long long>(v) & static_cast<long long>(additive(c)));
+  while (eat_keyword(c, "B_AND"))
+    v = static_cast<double>(static_cast<long long>(v) & static_cast<long long>(additive(c)));
   return v;
 }
 
 double SinumerikFrontEnd::additive(Cursor& c) {
   double v = term(c);
   for (;;) {
-    if (c.eat('+')) v += term(c);
-    else if (c.eat('-')) v -= term(c);
-    else return v;
+    if (c.eat('+'))
+      v += term(c);
+    else if (c.eat('-'))
+      v -= term(c);
+    else
+      return v;
   }
 }
 
@@ -195,17 +218,23 @@ double SinumerikFrontEnd::primary(Cursor& c) {
   if (ch == '(') {
     ++c.p;
     const double v = expr(c);
-    if (!c.eat(')')) fail(c.col(), "syntax", fmt::format("')' expected, found '{}'", c.end() ? std::string("end of line") : std::string(c.t.substr(c.p, 12))));
+    if (!c.eat(')'))
+      fail(c.col(), "syntax",
+           fmt::format("')' expected, found '{}'",
+                       c.end() ? std::string("end of line") : std::string(c.t.substr(c.p, 12))));
     return v;
   }
   if (std::isdigit(static_cast<unsigned char>(ch)) || ch == '.') return number_literal(c);
   if (ch == '$')
-    fail(col, "unsupported", fmt::format("'{}': system variables are not known to Kontur (dialect sinumerik)",
-                                         c.t.substr(c.p, std::min<std::size_t>(c.t.size() - c.p, 20))));
+    fail(col, "unsupported",
+         fmt::format("'{}': system variables are not known to Kontur (dialect sinumerik)",
+                     c.t.substr(c.p, std::min<std::size_t>(c.t.size() - c.p, 20))));
   if (ch == '"') fail(col, "syntax", "a string where a number is expected");
   const std::string_view name = identifier(c);
   if (name.empty())
-    fail(col, "syntax", fmt::format("'{}': a value expected", c.end() ? std::string("end of line") : std::string(c.t.substr(c.p, 12))));
+    fail(
+        col, "syntax",
+        fmt::format("'{}': a value expected", c.end() ? std::string("end of line") : std::string(c.t.substr(c.p, 12))));
   if (name == "TRUE") return 1.0;
   if (name == "FALSE") return 0.0;
   if (c.peek() == '(') return function(c, name, col);
@@ -214,19 +243,21 @@ double SinumerikFrontEnd::primary(Cursor& c) {
     const double i = expr(c);
     if (!c.eat(']')) fail(c.col(), "syntax", "R[: ']' expected");
     const double r = std::round(i);
-    if (std::abs(i - r) > 1e-9 || r < 0 || r >= r_count) fail(col, "parameter-range", fmt::format("R[{}]: R parameters are R0 .. R{}", num(i), r_count - 1));
+    if (std::abs(i - r) > 1e-9 || r < 0 || r >= r_count)
+      fail(col, "parameter-range", fmt::format("R[{}]: R parameters are R0 .. R{}", num(i), r_count - 1));
     return r_[static_cast<std::size_t>(r)];
   }
-  if (name.size() > 1 && name[0] == 'R' && std::all_of(name.begin() + 1, name.end(), [](char d) { return d >= '0' && d <= '9'; })) {
+  if (name.size() > 1 && name[0] == 'R' &&
+      std::all_of(name.begin() + 1, name.end(), [](char d) { return d >= '0' && d <= '9'; })) {
     const long r = std::strtol(std::string(name.substr(1)).c_str(), nullptr, 10);
-    if (r >= r_count || name.size() > 5) fail(col, "parameter-range", fmt::format("{}: R parameters are R0 .. R{}", name, r_count - 1));
+    if (r >= r_count || name.size() > 5)
+      fail(col, "parameter-range", fmt::format("{}: R parameters are R0 .. R{}", name, r_count - 1));
     if (!find_var(name)) return r_[static_cast<std::size_t>(r)];
   }
   Variable* v = find_var(name);
   if (!v) fail(col, "undefined-variable", fmt::format("{}: variable not defined (DEF it first)", name));
   if (v->is_array) {
-    if (!c.eat('['))
-      fail(c.col(), "syntax", fmt::format("{}: an array needs an index [i]", name));
+    if (!c.eat('[')) fail(c.col(), "syntax", fmt::format("{}: an array needs an index [i]", name));
     const double i = expr(c);
     if (!c.eat(']')) fail(c.col(), "syntax", fmt::format("{}[: ']' expected", name));
     const double r = std::round(i);
@@ -250,28 +281,84 @@ double SinumerikFrontEnd::function(Cursor& c, std::string_view name, int col) {
     }
   }
   auto need = [&](std::size_t n) {
-    if (a.size() != n) fail(col, "syntax", fmt::format("{}: {} argument{} expected, {} given", name, n, n == 1 ? "" : "s", a.size()));
+    if (a.size() != n)
+      fail(col, "syntax", fmt::format("{}: {} argument{} expected, {} given", name, n, n == 1 ? "" : "s", a.size()));
   };
   auto domain = [&](bool ok) {
     if (!ok) fail(col, "math-domain", fmt::format("{}({}): argument out of range", name, a.empty() ? "" : num(a[0])));
   };
-  if (name == "SIN") { need(1); return std::sin(a[0] * deg); }
-  if (name == "COS") { need(1); return std::cos(a[0] * deg); }
-  if (name == "TAN") { need(1); return std::tan(a[0] * deg); }
-  if (name == "ASIN") { need(1); domain(std::abs(a[0]) <= 1.0); return std::asin(a[0]) / deg; }
-  if (name == "ACOS") { need(1); domain(std::abs(a[0]) <= 1.0); return std::acos(a[0]) / deg; }
-  if (name == "ATAN2") { need(2); return std::atan2(a[0], a[1]) / deg; }
-  if (name == "SQRT") { need(1); domain(a[0] >= 0.0); return std::sqrt(a[0]); }
-  if (name == "ABS") { need(1); return std::abs(a[0]); }
-  if (name == "POT") { need(1); return a[0] * a[0]; }
-  if (name == "TRUNC") { need(1); return std::trunc(a[0]); }
-  if (name == "ROUND") { need(1); return std::round(a[0]); }
-  if (name == "ROUNDUP") { need(1); return a[0] >= 0.0 ? std::ceil(a[0]) : std::floor(a[0]); }
-  if (name == "EXP") { need(1); return std::exp(a[0]); }
-  if (name == "LN") { need(1); domain(a[0] > 0.0); return std::log(a[0]); }
-  if (name == "MINVAL") { need(2); return std::min(a[0], a[1]); }
-  if (name == "MAXVAL") { need(2); return std::max(a[0], a[1]); }
-  if (name == "BOUND") { need(3); return std::clamp(a[2], a[0], a[1]); }
+  if (name == "SIN") {
+    need(1);
+    return std::sin(a[0] * deg);
+  }
+  if (name == "COS") {
+    need(1);
+    return std::cos(a[0] * deg);
+  }
+  if (name == "TAN") {
+    need(1);
+    return std::tan(a[0] * deg);
+  }
+  if (name == "ASIN") {
+    need(1);
+    domain(std::abs(a[0]) <= 1.0);
+    return std::asin(a[0]) / deg;
+  }
+  if (name == "ACOS") {
+    need(1);
+    domain(std::abs(a[0]) <= 1.0);
+    return std::acos(a[0]) / deg;
+  }
+  if (name == "ATAN2") {
+    need(2);
+    return std::atan2(a[0], a[1]) / deg;
+  }
+  if (name == "SQRT") {
+    need(1);
+    domain(a[0] >= 0.0);
+    return std::sqrt(a[0]);
+  }
+  if (name == "ABS") {
+    need(1);
+    return std::abs(a[0]);
+  }
+  if (name == "POT") {
+    need(1);
+    return a[0] * a[0];
+  }
+  if (name == "TRUNC") {
+    need(1);
+    return std::trunc(a[0]);
+  }
+  if (name == "ROUND") {
+    need(1);
+    return std::round(a[0]);
+  }
+  if (name == "ROUNDUP") {
+    need(1);
+    return a[0] >= 0.0 ? std::ceil(a[0]) : std::floor(a[0]);
+  }
+  if (name == "EXP") {
+    need(1);
+    return std::exp(a[0]);
+  }
+  if (name == "LN") {
+    need(1);
+    domain(a[0] > 0.0);
+    return std::log(a[0]);
+  }
+  if (name == "MINVAL") {
+    need(2);
+    return std::min(a[0], a[1]);
+  }
+  if (name == "MAXVAL") {
+    need(2);
+    return std::max(a[0], a[1]);
+  }
+  if (name == "BOUND") {
+    need(3);
+    return std::clamp(a[2], a[0], a[1]);
+  }
   fail(col, "unknown-function", fmt::format("{}(: unknown function (dialect sinumerik)", name));
 }
 

@@ -2,12 +2,12 @@
 // block (addresses, assignments, frame instructions, cycle and subprogram calls).
 #include "sinumerik_front_end.hpp"
 
-#include "message_format.hpp"
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstring>
+
+#include "message_format.hpp"
 
 namespace kontur::gcode::detail {
 namespace {
@@ -22,16 +22,17 @@ bool all_digits(std::string_view s) noexcept {
 // Keywords that switch something of the control Kontur's path does not depend on: accepted with a
 // warning (once each).
 constexpr const char* no_op_keywords[] = {
-    "SOFT",    "BRISK",    "DRIVE",   "FFWON",     "FFWOF",    "COMPCAD",  "COMPOF",   "COMPON",  "COMPCURV",
-    "COMPSURF", "FNORM",   "TRAFOOF", "UPATH",     "SPATH",    "CFC",      "CFTCP",    "CFIN",    "DYNNORM",
-    "DYNPOS",  "DYNROUGH", "DYNSEMIFIN", "DYNFINISH", "FIFOCTRL", "STOPFIFO", "STARTFIFO", "ORIWKS",  "ORIMKS",
-    "ORIAXES", "ORIVECT", "CUT2D",   "CUT2DF",    "CUT3DC",   "DIAMOF",   "SPCON",    "SPCOF",   "FGREF",
-    "G601",    "G602",     "G603",    "ACN",       "ACP",      "CDON",     "CDOF",     "CDOF2",   "SBLOF",
-    "SBLON",   "DISPLOF",  "DISPLON", "PTP",       "CP",       "FGROUP",   "WAITM",    "WAITE",   "TOFFOF",
+    "SOFT",     "BRISK",    "DRIVE",      "FFWON",     "FFWOF",    "COMPCAD",  "COMPOF",    "COMPON", "COMPCURV",
+    "COMPSURF", "FNORM",    "TRAFOOF",    "UPATH",     "SPATH",    "CFC",      "CFTCP",     "CFIN",   "DYNNORM",
+    "DYNPOS",   "DYNROUGH", "DYNSEMIFIN", "DYNFINISH", "FIFOCTRL", "STOPFIFO", "STARTFIFO", "ORIWKS", "ORIMKS",
+    "ORIAXES",  "ORIVECT",  "CUT2D",      "CUT2DF",    "CUT3DC",   "DIAMOF",   "SPCON",     "SPCOF",  "FGREF",
+    "G601",     "G602",     "G603",       "ACN",       "ACP",      "CDON",     "CDOF",      "CDOF2",  "SBLOF",
+    "SBLON",    "DISPLOF",  "DISPLON",    "PTP",       "CP",       "FGROUP",   "WAITM",     "WAITE",  "TOFFOF",
 };
 // Function-like statements without an effect on the path (display, spindle assignment, settings).
-constexpr const char* no_op_calls[] = {"WORKPIECE", "SETMS", "CYCLE832", "FGROUP", "SPOS", "SPOSA", "SUPD", "G_SETTING",
-                                       "SETPIECE", "FFWON", "WAITM", "WAITE", "WAITS", "SETAL", "CLEARM", "SETM"};
+constexpr const char* no_op_calls[] = {"WORKPIECE", "SETMS", "CYCLE832",  "FGROUP",   "SPOS",
+                                       "SPOSA",     "SUPD",  "G_SETTING", "SETPIECE", "FFWON",
+                                       "WAITM",     "WAITE", "WAITS",     "CLEARM",   "SETM"};
 
 // What the control can do and Kontur does not.
 struct Refusal {
@@ -64,6 +65,12 @@ constexpr Refusal refusals[] = {
     {"CALL", "indirect calls (CALL)"},
     {"PCALL", "calls by path (PCALL)"},
     {"OSC", "tool oscillation (OSC)"},
+    {"RND", "corner rounding between blocks (RND=)"},
+    {"RNDM", "modal corner rounding (RNDM=)"},
+    {"CHF", "chamfers between blocks (CHF=)"},
+    {"CHR", "chamfers between blocks (CHR=)"},
+    {"ANG", "contour definitions by angles (ANG=)"},
+    {"GOTOS", "jumps to the program start (GOTOS)"},
     {"SPATH", "SPATH"},
 };
 }  // namespace
@@ -74,15 +81,22 @@ const char* SinumerikFrontEnd::refusal_of(std::string_view name) noexcept {
   // lathe, pocket, slot and other cycles of the control's cycle package
   if (name.starts_with("CYCLE9")) return "the lathe cycles CYCLE9x (turning, threading, grooving)";
   if (name.starts_with("POCKET") || name.starts_with("SLOT") || name == "LONGHOLE" || name.starts_with("CYCLE6") ||
-      name.starts_with("CYCLE7") || name.starts_with("CYCLE8") || name.starts_with("HOLES") || name.starts_with("CYCLE4") ||
-      name.starts_with("CYCLE1") || name.starts_with("CYCLE2") || name.starts_with("CYCLE3") || name.starts_with("CYCLE5"))
+      name.starts_with("CYCLE7") || name.starts_with("CYCLE8") || name.starts_with("HOLES") ||
+      name.starts_with("CYCLE4") || name.starts_with("CYCLE1") || name.starts_with("CYCLE2") ||
+      name.starts_with("CYCLE3") || name.starts_with("CYCLE5"))
     return "this machining cycle of the cycle package (only CYCLE81, CYCLE82 and CYCLE83 are expanded)";
   return nullptr;
 }
 
 SinumerikFrontEnd::SinumerikFrontEnd(const DialectServices& services)
-    : main_input(services.input), main_name(services.diagnostics.context().file), params(services.parameters), diag(services.diagnostics), opt(services.options),
-      executor(services.executor), r_(r_count, 0.0), scopes(1) {}
+    : main_input(services.input),
+      main_name(services.diagnostics.context().file),
+      params(services.parameters),
+      diag(services.diagnostics),
+      opt(services.options),
+      executor(services.executor),
+      r_(r_count, 0.0),
+      scopes(1) {}
 
 void SinumerikFrontEnd::warn_once(const std::string& key, int column, const std::string& message) {
   if (warned.insert(key).second) diag.warn(column, message + " (warned once)");
@@ -103,7 +117,8 @@ void SinumerikFrontEnd::prepare(std::string_view raw) {
     if (c == '"') in_string = !in_string;
     if (!in_string) {
       if (uc >= 128)
-        diag.fail(col, "character", fmt::format("byte 0x{:02x}: only ASCII is allowed outside comments and strings", uc));
+        diag.fail(col, "character",
+                  fmt::format("byte 0x{:02x}: only ASCII is allowed outside comments and strings", uc));
       if (c == '\t' || c == '\r' || c == '\f' || c == '\v') c = ' ';
       c = static_cast<char>(std::toupper(uc));
     }
@@ -186,7 +201,6 @@ LineOutcome SinumerikFrontEnd::read_program_line(std::string_view raw, Words& wo
   if (cur.peek() == '%') {
     // %_N_NAME_MPF, %_N_NAME_SPF, %MPF 90, %SPF 12: the program's header, or the next program of
     // the file (the end of this one)
-    const bool spf = text.find("_SPF") != std::string::npos || text.starts_with("%SPF") || text.starts_with("%L");
     if (!seen_block && !seen_header) {
       seen_header = true;
       return LineOutcome::nothing;
@@ -195,10 +209,17 @@ LineOutcome SinumerikFrontEnd::read_program_line(std::string_view raw, Words& wo
       end_of_sub(1);
       return LineOutcome::nothing;
     }
-    (void)spf;
     return LineOutcome::program_end;
   }
   const Head h = read_head(cur, true);
+  if (!frames.empty() && frames.back().kind == FKind::section) {  // a repeated section ends here?
+    const Frame& f = frames.back();
+    if (in().line_start() == f.stop_offset) {  // back at the REPEAT line: before it
+      end_section();
+      return LineOutcome::nothing;
+    }
+    if (f.single || (!f.var.empty() && h.label == f.var) || (f.var.empty() && h.label == "ENDLABEL")) end_section();
+  }
   if (h.deleted) return LineOutcome::nothing;
   words.n_number = h.n;
   if (cur.end()) return LineOutcome::nothing;
@@ -246,8 +267,9 @@ void SinumerikFrontEnd::at_end_of_input() {
                           main_name, frames.empty() ? std::string("a subprogram") : frames.back().var));
   if (frames.empty()) return;
   const Frame& f = frames.back();
-  static constexpr const char* names[] = {"IF", "WHILE", "FOR", "REPEAT", "LOOP", "subprogram call"};
-  static constexpr const char* ends[] = {"ENDIF", "ENDWHILE", "ENDFOR", "UNTIL", "ENDLOOP", "M17 or RET"};
+  static constexpr const char* names[] = {"IF", "WHILE", "FOR", "REPEAT", "LOOP", "subprogram call", "REPEAT"};
+  static constexpr const char* ends[] = {"ENDIF",   "ENDWHILE",   "ENDFOR",       "UNTIL",
+                                         "ENDLOOP", "M17 or RET", "its end label"};
   const auto k = static_cast<std::size_t>(f.kind);
   diag.fail_at_line(f.kind == FKind::call ? diag.line() : f.line, 1, "control-flow",
                     fmt::format("{}: the program ends inside it ({} missing)", names[k], ends[k]));
@@ -259,9 +281,9 @@ bool SinumerikFrontEnd::statement(Words& words) {
   Cursor c = cur;
   const int col = c.col();
   const std::string_view kw = identifier(c);
-  static constexpr const char* control_words[] = {"IF",    "ELSE",  "ENDIF", "WHILE", "ENDWHILE", "FOR",  "ENDFOR",
-                                                  "REPEAT", "UNTIL", "LOOP",  "ENDLOOP", "GOTOF", "GOTOB", "GOTO",
-                                                  "GOTOC", "RET",   "DEF",   "EXTERN", "MSG",   "STOPRE", "MCALL"};
+  static constexpr const char* control_words[] = {
+      "IF",    "ELSE",  "ENDIF", "WHILE",   "ENDWHILE", "FOR", "ENDFOR", "REPEAT", "UNTIL", "LOOP",   "ENDLOOP",
+      "GOTOF", "GOTOB", "GOTO",  "REPEATB", "GOTOC",    "RET", "DEF",    "EXTERN", "MSG",   "STOPRE", "MCALL"};
   bool is_control = false;
   for (const char* k : control_words)
     if (kw == k) is_control = true;
@@ -279,12 +301,15 @@ bool SinumerikFrontEnd::statement(Words& words) {
     if (name != "CYCLE81" && name != "CYCLE82" && name != "CYCLE83") {
       if (const char* r = refusal_of(name))
         fail(ccol, "unsupported", fmt::format("MCALL {}: {} is not supported by Kontur (dialect sinumerik)", name, r));
-      fail(ccol, "unsupported", fmt::format("MCALL {}: only the drilling cycles CYCLE81, CYCLE82, CYCLE83 are called "
-                                            "modally by Kontur (dialect sinumerik)", name));
+      fail(ccol, "unsupported",
+           fmt::format("MCALL {}: only the drilling cycles CYCLE81, CYCLE82, CYCLE83 are called "
+                       "modally by Kontur (dialect sinumerik)",
+                       name));
     }
     // check the arguments now; they are read again at every position
     (void)cycle_arguments(cur, name);
-    if (!cur.end()) fail(cur.col(), "syntax", fmt::format("'{}': unexpected after the cycle call", cur.t.substr(cur.p, 16)));
+    if (!cur.end())
+      fail(cur.col(), "syntax", fmt::format("'{}': unexpected after the cycle call", cur.t.substr(cur.p, 16)));
     mcall_active = true;
     mcall_text = std::string(save.t.substr(save.p));
     mcall_column = ccol;
@@ -354,8 +379,8 @@ LineOutcome SinumerikFrontEnd::block(Words& words) {
       remove('F');
     } else if (words.has('S')) {
       if (!(spindle_rpm > 0.0))
-        fail(words.col('S'), "dwell", fmt::format("G4 S{}: a dwell in spindle revolutions needs a spindle speed S first",
-                                                  num(words.get('S'))));
+        fail(words.col('S'), "dwell",
+             fmt::format("G4 S{}: a dwell in spindle revolutions needs a spindle speed S first", num(words.get('S'))));
       words.set('P', words.get('S') * 60.0 / spindle_rpm, words.col('S'));
       remove('S');
     } else {
@@ -395,8 +420,10 @@ LineOutcome SinumerikFrontEnd::block(Words& words) {
     expand_cycle(name, args, mcall_column);
   }
   if (sub_end) {
-    if (external && frames.back().kind == FKind::call && frames.back().external) deferred_return = true;
-    else end_of_sub(block_col);
+    if (external && frames.back().kind == FKind::call && frames.back().external)
+      deferred_return = true;
+    else
+      end_of_sub(block_col);
   }
   if (words.empty() && !pending.empty()) {
     words = pending.front();
@@ -415,7 +442,8 @@ void SinumerikFrontEnd::read_words(Words& words) {
     const int col = cur.col();
     const char ch = cur.peek();
     if (ch == '(')
-      fail(col, "comment", "'(': unexpected; it is not a comment on a Sinumerik (comments start with ';'; dialect sinumerik)");
+      fail(col, "comment",
+           "'(': unexpected; it is not a comment on a Sinumerik (comments start with ';'; dialect sinumerik)");
     if (!is_ident_start(ch))
       fail(col, "syntax", fmt::format("'{}': unexpected character '{}'", cur.t.substr(cur.p, 16), ch));
     const std::size_t start = cur.p;
@@ -462,16 +490,18 @@ void SinumerikFrontEnd::read_words(Words& words) {
 bool SinumerikFrontEnd::keyword_word(std::string_view name, int col, Words& words) {
   const std::string n(name);
   // addresses of several letters, with '='
-  if (cur.peek() == '=' && (name == "CR" || name == "TURN" || name == "AP" || name == "RP" || name == "ADIS" || name == "ADISPOS" || name == "RPL" ||
-                            (name.size() == 2 && (name[0] == 'I' || name[0] == 'J' || name[0] == 'K') && name[1] >= '1' &&
-                             name[1] <= '3'))) {
+  if (cur.peek() == '=' && (name == "CR" || name == "TURN" || name == "AP" || name == "RP" || name == "AR" || name == "ADIS" ||
+                            name == "ADISPOS" || name == "RPL" ||
+                            (name.size() == 2 && (name[0] == 'I' || name[0] == 'J' || name[0] == 'K') &&
+                             name[1] >= '1' && name[1] <= '3'))) {
     ++cur.p;
     const double v = expr(cur);
     if (name == "CR") {
       if (words.has('R')) fail(col, "word-twice", "CR=: given twice in the block");
       words.set('R', v, col);
     } else if (name == "TURN") {
-      if (v < 0.0 || v != std::floor(v)) fail(col, "arc-turns", fmt::format("TURN={}: full turns must be an integer >= 0", num(v)));
+      if (v < 0.0 || v != std::floor(v))
+        fail(col, "arc-turns", fmt::format("TURN={}: full turns must be an integer >= 0", num(v)));
       words.set('P', v + 1.0, col);
     } else if (name == "ADIS" || name == "ADISPOS") {
       if (v < 0.0) fail(col, "tolerance-range", fmt::format("{}={}: the rounding distance must be >= 0", name, num(v)));
@@ -479,6 +509,10 @@ bool SinumerikFrontEnd::keyword_word(std::string_view name, int col, Words& word
         path_tolerance = v;
         adis_given = true;
       }
+    } else if (name == "AR") {
+      if (words.has_arc_angle) fail(col, "word-twice", "AR=: given twice in the block");
+      words.has_arc_angle = true;
+      words.arc_angle = v;
     } else if (name == "AP" || name == "RP") {
       const unsigned bit = name == "AP" ? 1u : 2u;
       if (words.polar & bit) fail(col, "word-twice", fmt::format("{}=: given twice in the block", name));
@@ -500,15 +534,17 @@ bool SinumerikFrontEnd::keyword_word(std::string_view name, int col, Words& word
     return true;
   }
   if (name == "CIP" || name == "CT") {
-    if (words.keyword != Keyword::none) fail(col, "word-twice", fmt::format("{}: a second CIP or CT in the block", name));
+    if (words.keyword != Keyword::none)
+      fail(col, "word-twice", fmt::format("{}: a second CIP or CT in the block", name));
     words.keyword = name == "CIP" ? Keyword::cip : Keyword::ct;
     words.keyword_column = col;
     motion_g = name == "CIP" ? 10000 : 10002;  // modal like G2 / G3
     return true;
   }
   static const std::pair<const char*, FrameOp> frame_ops[] = {
-      {"TRANS", FrameOp::trans},   {"ATRANS", FrameOp::atrans}, {"ROT", FrameOp::rot},       {"AROT", FrameOp::arot},
-      {"SCALE", FrameOp::scale},   {"ASCALE", FrameOp::ascale}, {"MIRROR", FrameOp::mirror}, {"AMIRROR", FrameOp::amirror}};
+      {"TRANS", FrameOp::trans},   {"ATRANS", FrameOp::atrans},  {"ROT", FrameOp::rot},
+      {"AROT", FrameOp::arot},     {"SCALE", FrameOp::scale},    {"ASCALE", FrameOp::ascale},
+      {"MIRROR", FrameOp::mirror}, {"AMIRROR", FrameOp::amirror}};
   for (const auto& [word, op] : frame_ops)
     if (name == word) {
       if (!words.empty() || words.frame_op != FrameOp::none)
@@ -522,6 +558,8 @@ bool SinumerikFrontEnd::keyword_word(std::string_view name, int col, Words& word
       warn_once(n, col, fmt::format("{}: accepted, no effect on Kontur's path (dialect sinumerik)", name));
       return true;
     }
+  if (name == "SETAL")
+    fail(col, "alarm", "SETAL(..): the program raises an alarm here, and the control stops (dialect sinumerik)");
   if (cur.peek() == '(') {
     for (const char* k : no_op_calls)
       if (name == k) {
@@ -559,7 +597,8 @@ void SinumerikFrontEnd::address(char letter, int col, Words& words) {
         fail(col, "syntax", fmt::format("{}={}(..): AC / IC only on the axes X Y Z and on I J K", letter, id));
     } else if (cur.peek() == '"') {
       const std::string s = string_literal(cur);
-      if (letter != 'T') fail(col, "syntax", fmt::format("{}=\"{}\": a string is a value of T (a tool name) only", letter, s));
+      if (letter != 'T')
+        fail(col, "syntax", fmt::format("{}=\"{}\": a string is a value of T (a tool name) only", letter, s));
       warn_once("T=", col, fmt::format("T=\"{}\": a tool by name is recorded as no tool number", s));
       return;
     } else {
@@ -579,46 +618,121 @@ void SinumerikFrontEnd::address(char letter, int col, Words& words) {
   switch (letter) {
     case 'G': {
       const double r = std::round(v);
-      if (std::abs(v - r) > 1e-9 || r < 0.0 || r > 9999.0) fail(col, "unknown-g-code", fmt::format("{}: unknown G code", word));
+      if (std::abs(v - r) > 1e-9 || r < 0.0 || r > 9999.0)
+        fail(col, "unknown-g-code", fmt::format("{}: unknown G code", word));
       const int g = static_cast<int>(r);
       auto refusal = [&](const char* what) {
         return fmt::format("G{}: {} is not supported by Kontur (dialect sinumerik)", g, what);
       };
       switch (g) {
-        case 0: case 1: case 2: case 3: add_g(words, g * 10, col); return;
-        case 4: add_g(words, 40, col); return;
-        case 9: add_g(words, 90000, col); return;  // G9, taken out again in block()
-        case 17: case 18: case 19: case 40: case 90: case 91: case 93: case 94: case 95: case 96: case 97:
-        case 41: case 42:
+        case 0:
+        case 1:
+        case 2:
+        case 3:
           add_g(words, g * 10, col);
           return;
-        case 53: add_g(words, 530, col); return;
-        case 110: case 111: case 112:
+        case 4:
+          add_g(words, 40, col);
+          return;
+        case 9:
+          add_g(words, 90000, col);
+          return;  // G9, taken out again in block()
+        case 17:
+        case 18:
+        case 19:
+        case 40:
+        case 90:
+        case 91:
+        case 93:
+        case 94:
+        case 95:
+        case 96:
+        case 97:
+        case 41:
+        case 42:
+          add_g(words, g * 10, col);
+          return;
+        case 53:
+          add_g(words, 530, col);
+          return;
+        case 110:
+        case 111:
+        case 112:
           if (words.pole_g != 0) fail(col, "modal-group", fmt::format("G{}: a second pole definition in the block", g));
           words.pole_g = g;
           words.polar_column = col;
           return;
-        case 54: case 55: case 56: case 57: add_g(words, g * 10, col); return;
+        case 54:
+        case 55:
+        case 56:
+        case 57:
+          add_g(words, g * 10, col);
+          return;
         case 500:
           warn_once("G500", col, "G500: no settable frame; Kontur's work offsets are all zero, read as G54");
           add_g(words, 540, col);
           return;
-        case 60: add_g(words, 611, col); return;
-        case 64: case 641: case 642: case 643: case 644: case 645: add_g(words, 640, col); return;
-        case 601: case 602: case 603:
+        case 60:
+          add_g(words, 611, col);
+          return;
+        case 64:
+        case 641:
+        case 642:
+        case 643:
+        case 644:
+        case 645:
+          add_g(words, 640, col);
+          return;
+        case 601:
+        case 602:
+        case 603:
           warn_once("G60x", col, fmt::format("G{}: exact-stop window accepted, no effect on Kontur's path", g));
           return;
-        case 70: case 700: add_g(words, 200, col); return;
-        case 71: case 710: add_g(words, 210, col); return;
-        case 25: case 26: case 450: case 451: case 153:
-          warn_once(fmt::format("G{}", g), col, fmt::format("G{}: accepted, no effect on Kontur's path (dialect sinumerik)", g));
+        case 70:
+        case 700:
+          add_g(words, 200, col);
           return;
-        case 33: case 34: case 35: case 331: case 332: case 63: fail(col, "unsupported", refusal("thread cutting and tapping (spindle-synchronised motion)"));
-        case 74: case 75: fail(col, "unsupported", refusal("reference point approach (G74 / G75: the machine's reference points are not known)"));
-        case 58: case 59: fail(col, "unsupported", refusal("axial programmable offsets (G58 / G59)"));
-        case 140: case 141: case 142: case 143: case 147: case 148: case 247: case 248: case 347: case 348: case 340: case 341:
+        case 71:
+        case 710:
+          add_g(words, 210, col);
+          return;
+        case 25:
+        case 26:
+        case 450:
+        case 451:
+        case 153:
+          warn_once(fmt::format("G{}", g), col,
+                    fmt::format("G{}: accepted, no effect on Kontur's path (dialect sinumerik)", g));
+          return;
+        case 33:
+        case 34:
+        case 35:
+        case 331:
+        case 332:
+        case 63:
+          fail(col, "unsupported", refusal("thread cutting and tapping (spindle-synchronised motion)"));
+        case 74:
+        case 75:
+          fail(col, "unsupported",
+               refusal("reference point approach (G74 / G75: the machine's reference points are not known)"));
+        case 58:
+        case 59:
+          fail(col, "unsupported", refusal("axial programmable offsets (G58 / G59)"));
+        case 140:
+        case 141:
+        case 142:
+        case 143:
+        case 147:
+        case 148:
+        case 247:
+        case 248:
+        case 347:
+        case 348:
+        case 340:
+        case 341:
           fail(col, "unsupported", refusal("soft approach and retract (G14x / G24x / G34x)"));
-        default: break;
+        default:
+          break;
       }
       if (g >= 505 && g <= 599) {
         warn_once("G505", col, fmt::format("G{}: Kontur's work offsets are all zero, read as G54", g));
@@ -629,20 +743,24 @@ void SinumerikFrontEnd::address(char letter, int col, Words& words) {
     }
     case 'M': {
       const double r = std::round(v);
-      if (std::abs(v - r) > 1e-9 || r < 0.0 || r > 99999.0) fail(col, "unknown-m-code", fmt::format("{}: unknown M code", word));
+      if (std::abs(v - r) > 1e-9 || r < 0.0 || r > 99999.0)
+        fail(col, "unknown-m-code", fmt::format("{}: unknown M code", word));
       if (!words.add_m(static_cast<int>(r), col)) fail(col, "too-many-words", "more than 8 M codes in a block");
       return;
     }
     case 'D':
-      warn_once("D", col, fmt::format("{}: the tool edge (D) is recorded nowhere: Kontur follows the programmed path", word));
+      warn_once("D", col,
+                fmt::format("{}: the tool edge (D) is recorded nowhere: Kontur follows the programmed path", word));
       return;
     case 'H':
       warn_once("H", col, fmt::format("{}: auxiliary functions (H) are ignored", word));
       return;
-    default: break;
+    default:
+      break;
   }
   if (words.has(letter))
-    fail(col, "word-twice", fmt::format("{}: word given twice in the block (first at column {})", word, words.col(letter)));
+    fail(col, "word-twice",
+         fmt::format("{}: word given twice in the block (first at column {})", word, words.col(letter)));
   words.set(letter, v, col);
   const std::uint32_t bit = 1u << (letter - 'A');
   if (ac) words.absolute_words |= bit;
@@ -661,10 +779,14 @@ SinumerikFrontEnd::Variable* SinumerikFrontEnd::find_var(std::string_view name) 
 
 double SinumerikFrontEnd::store(VarType type, double v) {
   switch (type) {
-    case VarType::integer: return std::round(v);
-    case VarType::boolean: return v != 0.0 ? 1.0 : 0.0;
-    case VarType::character: return std::round(v);
-    default: return v;
+    case VarType::integer:
+      return std::round(v);
+    case VarType::boolean:
+      return v != 0.0 ? 1.0 : 0.0;
+    case VarType::character:
+      return std::round(v);
+    default:
+      return v;
   }
 }
 
@@ -673,14 +795,21 @@ void SinumerikFrontEnd::define(Cursor& c) {
   std::string_view type_name = identifier(c);
   if (type_name == "NCK" || type_name == "CHAN" || type_name == "LUD" || type_name == "PUD") type_name = identifier(c);
   VarType type;
-  if (type_name == "REAL") type = VarType::real;
-  else if (type_name == "INT") type = VarType::integer;
-  else if (type_name == "BOOL") type = VarType::boolean;
-  else if (type_name == "CHAR") type = VarType::character;
-  else if (type_name == "STRING") type = VarType::string;
-  else if (type_name == "AXIS") type = VarType::axis;
+  if (type_name == "REAL")
+    type = VarType::real;
+  else if (type_name == "INT")
+    type = VarType::integer;
+  else if (type_name == "BOOL")
+    type = VarType::boolean;
+  else if (type_name == "CHAR")
+    type = VarType::character;
+  else if (type_name == "STRING")
+    type = VarType::string;
+  else if (type_name == "AXIS")
+    type = VarType::axis;
   else if (type_name == "FRAME")
-    fail(col, "unsupported", "DEF FRAME: frame variables are not supported by Kontur (dialect sinumerik); use TRANS / ROT");
+    fail(col, "unsupported",
+         "DEF FRAME: frame variables are not supported by Kontur (dialect sinumerik); use TRANS / ROT");
   else
     fail(col, "syntax", fmt::format("DEF {}: unknown type (REAL INT BOOL CHAR STRING[n] AXIS)", type_name));
   if (type == VarType::string) {  // STRING[n]
@@ -707,9 +836,12 @@ void SinumerikFrontEnd::define(Cursor& c) {
     }
     if (c.eat('=')) {
       if (v.is_array) fail(c.col(), "unsupported", fmt::format("{}: initialising an array is not supported", name));
-      if (type == VarType::string) v.text = string_literal(c);
-      else if (type == VarType::axis) v.text = std::string(identifier(c));
-      else v.value = store(type, expr(c));
+      if (type == VarType::string)
+        v.text = string_literal(c);
+      else if (type == VarType::axis)
+        v.text = std::string(identifier(c));
+      else
+        v.value = store(type, expr(c));
     }
     scopes.back()[name] = std::move(v);
     if (!c.eat(',')) break;
@@ -724,7 +856,8 @@ double* SinumerikFrontEnd::lvalue(Cursor& c, std::string_view name, int col, Var
     const double i = expr(c);
     if (!c.eat(']')) fail(c.col(), "syntax", "R[: ']' expected");
     const double r = std::round(i);
-    if (std::abs(r - i) > 1e-9 || r < 0 || r >= r_count) fail(col, "parameter-range", fmt::format("R[{}]: R parameters are R0 .. R{}", num(i), r_count - 1));
+    if (std::abs(r - i) > 1e-9 || r < 0 || r >= r_count)
+      fail(col, "parameter-range", fmt::format("R[{}]: R parameters are R0 .. R{}", num(i), r_count - 1));
     return &r_[static_cast<std::size_t>(r)];
   }
   if (Variable* v = find_var(name)) {
@@ -741,7 +874,8 @@ double* SinumerikFrontEnd::lvalue(Cursor& c, std::string_view name, int col, Var
     return &v->value;
   }
   const long r = std::strtol(std::string(name.substr(1)).c_str(), nullptr, 10);
-  if (r >= r_count || name.size() > 5) fail(col, "parameter-range", fmt::format("{}: R parameters are R0 .. R{}", name, r_count - 1));
+  if (r >= r_count || name.size() > 5)
+    fail(col, "parameter-range", fmt::format("{}: R parameters are R0 .. R{}", name, r_count - 1));
   return &r_[static_cast<std::size_t>(r)];
 }
 
@@ -750,8 +884,10 @@ void SinumerikFrontEnd::assign(Cursor& c, std::string_view name, int col) {
   Variable* var = find_var(name);
   if (var && (var->type == VarType::string || var->type == VarType::axis)) {
     if (!c.eat('=')) fail(c.col(), "syntax", fmt::format("{}: '=' expected", name));
-    if (var->type == VarType::string) var->text = string_literal(c);
-    else var->text = std::string(identifier(c));
+    if (var->type == VarType::string)
+      var->text = string_literal(c);
+    else
+      var->text = std::string(identifier(c));
     return;
   }
   double* target = lvalue(c, name, col, &type);

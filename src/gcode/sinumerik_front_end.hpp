@@ -11,8 +11,6 @@
 // Drilling cycles CYCLE81 / 82 / 83 (also as MCALL) expand into several blocks, handed out by
 // pending_words (sinumerik_cycles.cpp). The words go to the dialect-neutral executor with the
 // codes it knows (G70 -> G20, G60 -> G61.1, SUPA -> G53, ...).
-#include "dialect_front_end.hpp"
-
 #include <array>
 #include <cstddef>
 #include <deque>
@@ -24,10 +22,12 @@
 #include <string_view>
 #include <vector>
 
+#include "dialect_front_end.hpp"
+
 namespace kontur::gcode::detail {
 
 class SinumerikFrontEnd final : public DialectFrontEnd {
-public:
+ public:
   explicit SinumerikFrontEnd(const DialectServices& services);
 
   [[nodiscard]] Dialect dialect() const noexcept override { return Dialect::sinumerik; }
@@ -65,28 +65,34 @@ public:
     [[nodiscard]] int col() const noexcept { return static_cast<int>(p) + 1; }
   };
 
-private:
+ private:
   enum class VarType { real, integer, boolean, character, string, axis };
   struct Variable {
     VarType type = VarType::real;
     double value = 0.0;
-    std::string text;            // STRING, AXIS
-    std::vector<double> array;   // DEF REAL A[n]
+    std::string text;           // STRING, AXIS
+    std::vector<double> array;  // DEF REAL A[n]
     bool is_array = false;
   };
   using Scope = std::map<std::string, Variable, std::less<>>;
 
-  enum class FKind { if_, while_, for_, repeat, loop, call };
+  enum class FKind { if_, while_, for_, repeat, loop, call, section };
   struct Frame {
     Frame(FKind k, std::size_t o, long l) : kind(k), offset(o), line(l) {}
     FKind kind;
     std::size_t offset;  // while: its line; for / repeat / loop: the line after; call: the return line
     long line;
-    std::string var;     // for: the counter
-    double end = 0.0;    // for: the last value
-    long repeats = 0;    // call: repetitions left (NAME P3)
+    std::string var;           // for: the counter
+    double end = 0.0;          // for: the last value
+    long repeats = 0;          // call: repetitions left (NAME P3)
     std::vector<double> args;  // call: the arguments, for a repetition
     bool external = false;     // call: of a subprogram in a file of its own
+    // section (REPEAT label [label] P=n, REPEATB label P=n): offset is the first line; var the end
+    // label ("" up to ENDLABEL: or the REPEAT line); repeats left; where to go on after it
+    bool single = false;          // REPEATB: the labelled block alone
+    std::size_t stop_offset = 0;  // the REPEAT line (the section ends before it)
+    std::size_t ret_offset = 0;
+    long ret_line = 0;
   };
   struct Position {
     std::size_t offset;
@@ -123,14 +129,14 @@ private:
   long loop_iterations = 0;
   bool seen_header = false;
   bool seen_block = false;
-  bool end_requested = false;  // RET of a program of its own, a PROC after the main program
-  bool g9_restore = false;  // G9 ran in the last block: the path mode goes back
-  int path_g = 640;         // the executor's path code in effect (G64 / G61.1)
+  bool end_requested = false;    // RET of a program of its own, a PROC after the main program
+  bool g9_restore = false;       // G9 ran in the last block: the path mode goes back
+  int path_g = 640;              // the executor's path code in effect (G64 / G61.1)
   double path_tolerance = -1.0;  // ADIS given (mm), -1 none
   bool adis_given = false;       // ADIS= in the block being read
-  int motion_g = 0;         // the last G0/G1/G2/G3 (times 10; G0 at the start, as the control), for cycles
+  int motion_g = 0;              // the last G0/G1/G2/G3 (times 10; G0 at the start, as the control), for cycles
   double spindle_rpm = 0.0;
-  int plane_g = 170;        // G17 / G18 / G19 (times 10), for cycles
+  int plane_g = 170;  // G17 / G18 / G19 (times 10), for cycles
   bool inch = false;
 
   // cycles
@@ -152,7 +158,7 @@ private:
     bool deleted = false;
   };
   Head read_head(Cursor& c, bool record);
-  bool statement(Words& words);   // a control-flow or definition line: true if it was one
+  bool statement(Words& words);  // a control-flow or definition line: true if it was one
   LineOutcome block(Words& words);
   void read_words(Words& words);
   bool keyword_word(std::string_view name, int col, Words& words);
@@ -168,9 +174,10 @@ private:
   static double store(VarType type, double v);
 
   // ---- expressions (sinumerik_expression.cpp)
-public:
+ public:
   double expr(Cursor& c);
-private:
+
+ private:
   double compare(Cursor& c);
   double concat(Cursor& c);
   double logic_or(Cursor& c);
@@ -203,6 +210,10 @@ private:
   // What the control can do and Kontur does not: the feature named `name` stands for, or nullptr.
   static const char* refusal_of(std::string_view name) noexcept;
   void end_of_sub(int col);
+  // The repeated section ends with this line: again from its start, or on after the REPEAT line.
+  void end_section();
+  // REPEAT / REPEATB with a label: a program section run again P times.
+  void repeat_section(Cursor& c, int col, bool single);
   bool find_proc(const std::string& name);
   // Opens NAME.SPF beside the program for a call; false if there is none.
   bool open_external(const std::string& name, int col);
