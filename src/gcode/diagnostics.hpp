@@ -37,11 +37,6 @@ public:
 
   /// The program's name as given to the reader (shared with every block's SourceLocation).
   [[nodiscard]] const std::shared_ptr<const std::string>& name() const noexcept { return name_; }
-  /// Reports as the file `name` from now on (a dialect reading a subprogram of its own file).
-  void set_name(std::string_view name) {
-    name_ = std::make_shared<const std::string>(name);
-    ctx_.file = *name_;
-  }
   /// File and current line, for the lexer's messages.
   [[nodiscard]] const LineContext& context() const noexcept { return ctx_; }
   /// The current 1-based line (0 before the first).

@@ -543,7 +543,7 @@ bool SinumerikFrontEnd::open_external(const std::string& name, int col) {
   file->open(found.string());
   external = std::move(file);
   main_line = diag.line();
-  diag.set_name(found.string());
+  diag.set_file(std::make_shared<const std::string>(found.string()));
   diag.set_line(0);  // the subprogram file's own line numbers
   labels.swap(saved_labels);
   labels.clear();
@@ -575,7 +575,7 @@ bool SinumerikFrontEnd::open_external(const std::string& name, int col) {
 
 void SinumerikFrontEnd::close_external() {
   external.reset();
-  diag.set_name(main_name);
+  diag.set_file(main_file);
   diag.set_line(main_line);
   labels.swap(saved_labels);
   saved_labels.clear();

@@ -90,7 +90,7 @@ const char* SinumerikFrontEnd::refusal_of(std::string_view name) noexcept {
 
 SinumerikFrontEnd::SinumerikFrontEnd(const DialectServices& services)
     : main_input(services.input),
-      main_name(services.diagnostics.context().file),
+      main_name(services.diagnostics.context().file), main_file(services.diagnostics.name()),
       params(services.parameters),
       diag(services.diagnostics),
       opt(services.options),

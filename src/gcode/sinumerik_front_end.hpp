@@ -107,6 +107,7 @@ class SinumerikFrontEnd final : public DialectFrontEnd {
   ProgramInput& main_input;
   std::unique_ptr<ProgramInput> external;  // the file of the subprogram being run, if not this one
   std::string main_name;                   // the program's name, for messages after the return
+  std::shared_ptr<const std::string> main_file;  // the same, as the blocks' SourceLocation holds it
   long external_line = 0;                  // the line of the subprogram file last read
   long main_line = 0;                      // the main program's line of the call
   bool deferred_return = false;            // M17 in a block of a subprogram file: return after it ran
