@@ -287,6 +287,8 @@ TEST(GcodeFanucDialect, PortOutputIsIgnoredWithAWarning) {
   ASSERT_EQ(r.blocks.size(), 1u);
   ASSERT_EQ(r.warnings.size(), 3u);
   EXPECT_EQ(r.warnings[1], "p.nc:3:1: warning: DPRNT: output to a port, ignored (it does not move the axes)");
+  // a loop not run skips it unread
+  EXPECT_EQ(read("WHILE [1 EQ 2] DO1\nN5 DPRNT[A:*#1]\nEND1\nM30\n", Dialect::haas).warnings.size(), 0u);
 }
 
 TEST(GcodeFanucDialect, EveryRefusalNamesTheLineTheFeatureAndTheDialect) {

@@ -179,6 +179,7 @@ void FanucFrontEnd::while_do(std::size_t pos, int column) {
 void FanucFrontEnd::skip_to_end(int id, int column, const std::string& what) {
   std::string_view raw;
   while (input.read_line(raw)) {
+    if (port_output(raw)) continue;
     normalize_line(raw, diag.context(), nl, rules);
     if (nl.percent && nl.text.empty()) break;
     const std::string& t = nl.text;

@@ -47,6 +47,19 @@ std::string FanucFrontEnd::comment_after(int column) const {
 
 // ---------------------------------------------------------------- a line
 
+int FanucFrontEnd::port_output(std::string_view raw) {
+  std::size_t i = raw.find_first_not_of(" \t");
+  if (i != std::string_view::npos && (raw[i] == 'N' || raw[i] == 'n')) {
+    ++i;
+    while (i < raw.size() && (is_digit(raw[i]) || raw[i] == ' ' || raw[i] == '\t')) ++i;
+  }
+  if (i == std::string_view::npos || i + 5 > raw.size()) return 0;
+  std::string word(raw.substr(i, 5));
+  for (char& ch : word) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  const bool port = word == "DPRNT" || word == "BPRNT" || word == "POPEN" || word == "PCLOS";
+  return port ? static_cast<int>(i) + 1 : 0;
+}
+
 LineOutcome FanucFrontEnd::read_line(std::string_view raw, Words& words) {
   if (resume_line >= 0) {  // the line after a jump: its own number
     diag.set_line(resume_line);
@@ -56,22 +69,11 @@ LineOutcome FanucFrontEnd::read_line(std::string_view raw, Words& words) {
   next_offset = input.tell();
   line_no = diag.line();
   raw_line.assign(raw);
-  {  // DPRNT[..] / BPRNT / POPEN / PCLOS: output to a port (free text), no motion
-    std::size_t i = raw.find_first_not_of(" \t");
-    if (i != std::string_view::npos && (raw[i] == 'N' || raw[i] == 'n')) {
-      ++i;
-      while (i < raw.size() && (is_digit(raw[i]) || raw[i] == ' ' || raw[i] == '\t')) ++i;
-    }
-    if (i != std::string_view::npos && i + 5 <= raw.size()) {
-      std::string word(raw.substr(i, 5));
-      for (char& ch : word) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
-      if (word == "DPRNT" || word == "BPRNT" || word == "POPEN" || word == "PCLOS") {
-        seen_block = true;
-        diag.warn(static_cast<int>(i) + 1,
-                  fmt::format("{}: output to a port, ignored (it does not move the axes)", word));
-        return LineOutcome::nothing;
-      }
-    }
+  if (const int at = port_output(raw)) {  // DPRNT[..] / BPRNT / POPEN / PCLOS: free text, no motion
+    seen_block = true;
+    diag.warn(at, fmt::format("{}: output to a port, ignored (it does not move the axes)",
+                              raw_line.substr(static_cast<std::size_t>(at - 1), 5)));
+    return LineOutcome::nothing;
   }
   normalize_line(raw, diag.context(), nl, rules);
   words.clear();

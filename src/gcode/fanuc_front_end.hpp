@@ -89,6 +89,8 @@ class FanucFrontEnd final : public DialectFrontEnd {
   std::function<MacroValue(double, std::size_t)> reader;
 
   // ================================================================ a line
+  // The column of DPRNT / BPRNT / POPEN / PCLOS starting the raw line (after its N number), else 0.
+  static int port_output(std::string_view raw);
   // Reads the statements and words of nl from `pos`; true if words were made.
   bool statements(std::size_t pos, Words& words);
   // #i = expr (several may follow each other); pos at '#'.
