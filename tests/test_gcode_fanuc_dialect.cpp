@@ -302,6 +302,9 @@ TEST(GcodeFanucDialect, EveryRefusalNamesTheLineTheFeatureAndTheDialect) {
       {"G21\nG31 X1. F100.\n", "p.nc:2:1: G31: the skip function (probing) is not supported (dialect fanuc)"},
       {"G21\nG50 X100. Z50.\n",
        "p.nc:2:1: G50: the lathe's coordinate system setting (G50 X Z) is not supported (dialect fanuc)"},
+      {"G21\nG50 S2000\n",
+       "p.nc:2:1: G50 S: the lathe's spindle speed limit: lathe programs (X as a diameter, feed per revolution) are "
+       "not supported (dialect fanuc)"},
       {"#1=1\nIF [#1 EQ 1] THEN G0 X1.\n",
        "p.nc:2:19: IF .. THEN: only an assignment #i = .. may follow THEN (dialect fanuc)"},
       {"#1 = #7001\n", "p.nc:1:6: #7001: a system variable Kontur does not read (dialect fanuc)"},

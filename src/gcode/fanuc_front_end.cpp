@@ -452,7 +452,10 @@ void FanucFrontEnd::dialect_codes(Words& w) {
     if (g == 500 || g == 690 || g == 150 || g == 501) {
       if (g == 500 && (w.has('X') || w.has('Z')))
         refuse(col, name, "the lathe's coordinate system setting (G50 X Z) is not supported");
-      if (g == 500) drop("S");  // G50 S: the spindle speed limit
+      if (g == 500 && w.has('S'))
+        refuse(col, "G50 S",
+               "the lathe's spindle speed limit: lathe programs (X as a diameter, feed per revolution) are not "
+               "supported");
       drop_g(i);
       continue;
     }
