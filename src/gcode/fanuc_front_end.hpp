@@ -6,7 +6,7 @@
 // common #100-#199 and #500-#999, vacant #0, the system variables of the machine state), expressions
 // in [ ] (fanuc_expression.cpp), IF / GOTO / THEN, WHILE / DO / END, M98 / M99 / M97 subprograms and
 // G65 macro calls (fanuc_control_flow.cpp). Like the LinuxCNC front end it streams: a jump seeks to a
-// line start; the file is indexed (program numbers, N numbers) once, the first time control flow
+// line start; the file is indexed (program numbers, N numbers) the first time control flow
 // needs it.
 #include <array>
 #include <cstddef>
@@ -116,11 +116,13 @@ class FanucFrontEnd final : public DialectFrontEnd {
     Pos header;        // the O line
     Pos body;          // the line after it
   };
-  bool indexed = false;
+  bool programs_indexed = false, labels_indexed = false;
   std::vector<Program> programs;                          // in file order
   std::map<long, std::vector<Pos>> labels;                // N number -> lines, in file order
   std::size_t end_offset = static_cast<std::size_t>(-1);  // a closing '%'
-  void index_file();
+  // Reads the whole file once for its program numbers and, with `labels` (GOTO, M97, M99 P), its
+  // N numbers (memory grows with the number of N lines then; M98 alone does not need them).
+  void index_file(bool labels);
   // The extent [begin, end) of the program holding `offset`.
   [[nodiscard]] std::pair<std::size_t, std::size_t> program_extent(std::size_t offset) const;
   [[nodiscard]] const Program* find_program(long number) const;
