@@ -280,6 +280,10 @@ TEST(GcodeFanucDialect, Mach3ReadsItsOlderUnitCodesAndTheG92Variables) {
   EXPECT_EQ(r.blocks[1].end, Vec3(20, 8, 0));  // X10 Y4 in the G92 frame, whose offset is (10, 4)
   EXPECT_EQ(r.blocks[2].end, Vec3(20, 8, -1));
   EXPECT_TRUE(r.warnings.empty()) << r.warnings[0];
+  // its parameters are LinuxCNC's: any number below #5000, 0 until set
+  const auto p = read("G21 G90 F100\nG1 Y5\n#1000 = 7\nG1 X#1000 Y#2\nM30\n", Dialect::mach3);
+  ASSERT_EQ(p.blocks.size(), 2u);
+  EXPECT_EQ(p.blocks[1].end, Vec3(7, 0, 0));  // Y#2 is Y0, not left out
 }
 
 TEST(GcodeFanucDialect, PortOutputIsIgnoredWithAWarning) {

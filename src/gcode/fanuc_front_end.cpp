@@ -24,6 +24,7 @@ FanucFrontEnd::FanucFrontEnd(const DialectServices& services)
   rules.comma = true;
   rules.dialect = to_string(dialect_);
   locals.emplace_back();
+  if (dialect_ == Dialect::mach3) mach3_parameters.resize(mach3_parameter_end);
   reader = [this](double index, std::size_t at) { return read_var(index, at); };
 }
 
@@ -215,11 +216,14 @@ int FanucFrontEnd::var_index(double index, std::size_t at) const {
 
 MacroValue FanucFrontEnd::read_var(double index, std::size_t at) {
   const int i = var_index(index, at);
-  auto value = [](const Var& v) { return MacroValue{v.v, !v.set}; };
+  // Mach3 reads an unset parameter as 0, as LinuxCNC does; the Fanuc family as vacant
+  const bool mach3 = dialect_ == Dialect::mach3;
+  auto value = [mach3](const Var& v) { return MacroValue{v.v, !v.set && !mach3}; };
   if (i == 0) return MacroValue{0.0, true};
   if (i <= 33) return value(locals.back()[static_cast<std::size_t>(i)]);
   if (i >= 100 && i <= 199) return value(common100[static_cast<std::size_t>(i - 100)]);
   if (i >= 500 && i <= 999) return value(common500[static_cast<std::size_t>(i - 500)]);
+  if (mach3 && i < mach3_parameter_end) return value(mach3_parameters[static_cast<std::size_t>(i)]);
   const int col = at < nl.column.size() ? nl.column[at] : 1;
   const bool haas_tool_data = dialect_ == Dialect::haas && ((i >= 1601 && i <= 2000) || (i >= 5401 && i <= 5999));
   if ((i >= 2001 && i <= 2999) || (i >= 10001 && i <= 19999) || haas_tool_data) {
@@ -303,6 +307,10 @@ void FanucFrontEnd::write_var(double index, const MacroValue& value, std::size_t
   }
   if (i >= 500 && i <= 999) {
     common500[static_cast<std::size_t>(i - 500)] = v;
+    return;
+  }
+  if (dialect_ == Dialect::mach3 && i > 0 && i < mach3_parameter_end) {
+    mach3_parameters[static_cast<std::size_t>(i)] = v;
     return;
   }
   const std::string what = fmt::format("#{}={}", i, value.vacant ? "#0" : num(value.v));

@@ -81,6 +81,9 @@ class FanucFrontEnd final : public DialectFrontEnd {
   std::vector<std::array<Var, 34>> locals;  // per macro call level, #1..#33
   std::array<Var, 100> common100{};         // #100..#199
   std::array<Var, 500> common500{};         // #500..#999
+  // Mach3: every parameter below #5000 is the program's (LinuxCNC's numbering), 0 until set
+  static constexpr int mach3_parameter_end = 5000;
+  std::vector<Var> mach3_parameters;
   MacroValue read_var(double index, std::size_t at);
   void write_var(double index, const MacroValue& value, std::size_t at);
   [[nodiscard]] int var_index(double index, std::size_t at) const;
