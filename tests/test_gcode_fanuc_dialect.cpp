@@ -280,6 +280,10 @@ TEST(GcodeFanucDialect, Mach3ReadsItsOlderUnitCodesAndTheG92Variables) {
   EXPECT_EQ(r.blocks[1].end, Vec3(20, 8, 0));  // X10 Y4 in the G92 frame, whose offset is (10, 4)
   EXPECT_EQ(r.blocks[2].end, Vec3(20, 8, -1));
   EXPECT_TRUE(r.warnings.empty()) << r.warnings[0];
+  // its parameters are LinuxCNC's: any number below #5000, 0 until set
+  const auto p = read("G21 G90 F100\nG1 Y5\n#1000 = 7\nG1 X#1000 Y#2\nM30\n", Dialect::mach3);
+  ASSERT_EQ(p.blocks.size(), 2u);
+  EXPECT_EQ(p.blocks[1].end, Vec3(7, 0, 0));  // Y#2 is Y0, not left out
 }
 
 TEST(GcodeFanucDialect, PortOutputIsIgnoredWithAWarning) {
@@ -287,6 +291,8 @@ TEST(GcodeFanucDialect, PortOutputIsIgnoredWithAWarning) {
   ASSERT_EQ(r.blocks.size(), 1u);
   ASSERT_EQ(r.warnings.size(), 3u);
   EXPECT_EQ(r.warnings[1], "p.nc:3:1: warning: DPRNT: output to a port, ignored (it does not move the axes)");
+  // a loop not run skips it unread
+  EXPECT_EQ(read("WHILE [1 EQ 2] DO1\nN5 DPRNT[A:*#1]\nEND1\nM30\n", Dialect::haas).warnings.size(), 0u);
 }
 
 TEST(GcodeFanucDialect, EveryRefusalNamesTheLineTheFeatureAndTheDialect) {
@@ -300,6 +306,9 @@ TEST(GcodeFanucDialect, EveryRefusalNamesTheLineTheFeatureAndTheDialect) {
       {"G21\nG31 X1. F100.\n", "p.nc:2:1: G31: the skip function (probing) is not supported (dialect fanuc)"},
       {"G21\nG50 X100. Z50.\n",
        "p.nc:2:1: G50: the lathe's coordinate system setting (G50 X Z) is not supported (dialect fanuc)"},
+      {"G21\nG50 S2000\n",
+       "p.nc:2:1: G50 S: the lathe's spindle speed limit: lathe programs (X as a diameter, feed per revolution) are "
+       "not supported (dialect fanuc)"},
       {"#1=1\nIF [#1 EQ 1] THEN G0 X1.\n",
        "p.nc:2:19: IF .. THEN: only an assignment #i = .. may follow THEN (dialect fanuc)"},
       {"#1 = #7001\n", "p.nc:1:6: #7001: a system variable Kontur does not read (dialect fanuc)"},

@@ -19,9 +19,12 @@ long whole(double v) {
 
 }  // namespace
 
-void FanucFrontEnd::index_file() {
-  if (indexed) return;
-  indexed = true;
+void FanucFrontEnd::index_file(bool want_labels) {
+  if (want_labels ? labels_indexed : programs_indexed) return;
+  programs_indexed = true;
+  labels_indexed = want_labels;
+  programs.clear();
+  end_offset = static_cast<std::size_t>(-1);
   const std::size_t back = input.tell();
   const long here = diag.line();
   input.seek(0, 1);
@@ -67,7 +70,7 @@ void FanucFrontEnd::index_file() {
       programs.push_back(Program{digits ? number : -1, std::move(name), Pos{at, ln}, Pos{input.tell(), ln + 1}});
       continue;
     }
-    if (c == 'N' && i + 1 < raw.size() && std::isdigit(static_cast<unsigned char>(raw[i + 1]))) {
+    if (want_labels && c == 'N' && i + 1 < raw.size() && std::isdigit(static_cast<unsigned char>(raw[i + 1]))) {
       long n = 0;
       for (std::size_t j = i + 1;
            j < raw.size() && std::isdigit(static_cast<unsigned char>(raw[j])) && n < 100000000000L; ++j)
@@ -116,7 +119,7 @@ void FanucFrontEnd::goto_label(double n, int column, const std::string& what, st
   if (label < 0)
     diag.fail(column, "goto",
               fmt::format("{}: the block number must be a whole number >= 0 (dialect {})", what, to_string(dialect_)));
-  index_file();
+  index_file(true);
   const auto [begin, end] = program_extent(scope_at);
   const Pos* target = nullptr;
   if (const auto it = labels.find(label); it != labels.end()) {
@@ -179,6 +182,7 @@ void FanucFrontEnd::while_do(std::size_t pos, int column) {
 void FanucFrontEnd::skip_to_end(int id, int column, const std::string& what) {
   std::string_view raw;
   while (input.read_line(raw)) {
+    if (port_output(raw)) continue;
     normalize_line(raw, diag.context(), nl, rules);
     if (nl.percent && nl.text.empty()) break;
     const std::string& t = nl.text;
@@ -226,7 +230,7 @@ void FanucFrontEnd::call(CallKind kind, const Words& w, int column, const std::a
                 fmt::format("{} L{}: the repeat count must be a whole number 0..{} (dialect {})", what, num(w.get('L')),
                             opt.max_loop_iterations, d));
   }
-  index_file();
+  index_file(kind == CallKind::m97);
   Pos start;
   if (kind == CallKind::m97) {
     const Pos* target = nullptr;

@@ -25,6 +25,7 @@ FanucFrontEnd::FanucFrontEnd(const DialectServices& services)
   rules.polar = false;
   rules.dialect = to_string(dialect_);
   locals.emplace_back();
+  if (dialect_ == Dialect::mach3) mach3_parameters.resize(mach3_parameter_end);
   reader = [this](double index, std::size_t at) { return read_var(index, at); };
 }
 
@@ -48,6 +49,19 @@ std::string FanucFrontEnd::comment_after(int column) const {
 
 // ---------------------------------------------------------------- a line
 
+int FanucFrontEnd::port_output(std::string_view raw) {
+  std::size_t i = raw.find_first_not_of(" \t");
+  if (i != std::string_view::npos && (raw[i] == 'N' || raw[i] == 'n')) {
+    ++i;
+    while (i < raw.size() && (is_digit(raw[i]) || raw[i] == ' ' || raw[i] == '\t')) ++i;
+  }
+  if (i == std::string_view::npos || i + 5 > raw.size()) return 0;
+  std::string word(raw.substr(i, 5));
+  for (char& ch : word) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  const bool port = word == "DPRNT" || word == "BPRNT" || word == "POPEN" || word == "PCLOS";
+  return port ? static_cast<int>(i) + 1 : 0;
+}
+
 LineOutcome FanucFrontEnd::read_line(std::string_view raw, Words& words) {
   if (resume_line >= 0) {  // the line after a jump: its own number
     diag.set_line(resume_line);
@@ -57,22 +71,11 @@ LineOutcome FanucFrontEnd::read_line(std::string_view raw, Words& words) {
   next_offset = input.tell();
   line_no = diag.line();
   raw_line.assign(raw);
-  {  // DPRNT[..] / BPRNT / POPEN / PCLOS: output to a port (free text), no motion
-    std::size_t i = raw.find_first_not_of(" \t");
-    if (i != std::string_view::npos && (raw[i] == 'N' || raw[i] == 'n')) {
-      ++i;
-      while (i < raw.size() && (is_digit(raw[i]) || raw[i] == ' ' || raw[i] == '\t')) ++i;
-    }
-    if (i != std::string_view::npos && i + 5 <= raw.size()) {
-      std::string word(raw.substr(i, 5));
-      for (char& ch : word) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
-      if (word == "DPRNT" || word == "BPRNT" || word == "POPEN" || word == "PCLOS") {
-        seen_block = true;
-        diag.warn(static_cast<int>(i) + 1,
-                  fmt::format("{}: output to a port, ignored (it does not move the axes)", word));
-        return LineOutcome::nothing;
-      }
-    }
+  if (const int at = port_output(raw)) {  // DPRNT[..] / BPRNT / POPEN / PCLOS: free text, no motion
+    seen_block = true;
+    diag.warn(at, fmt::format("{}: output to a port, ignored (it does not move the axes)",
+                              raw_line.substr(static_cast<std::size_t>(at - 1), 5)));
+    return LineOutcome::nothing;
   }
   normalize_line(raw, diag.context(), nl, rules);
   words.clear();
@@ -214,11 +217,14 @@ int FanucFrontEnd::var_index(double index, std::size_t at) const {
 
 MacroValue FanucFrontEnd::read_var(double index, std::size_t at) {
   const int i = var_index(index, at);
-  auto value = [](const Var& v) { return MacroValue{v.v, !v.set}; };
+  // Mach3 reads an unset parameter as 0, as LinuxCNC does; the Fanuc family as vacant
+  const bool mach3 = dialect_ == Dialect::mach3;
+  auto value = [mach3](const Var& v) { return MacroValue{v.v, !v.set && !mach3}; };
   if (i == 0) return MacroValue{0.0, true};
   if (i <= 33) return value(locals.back()[static_cast<std::size_t>(i)]);
   if (i >= 100 && i <= 199) return value(common100[static_cast<std::size_t>(i - 100)]);
   if (i >= 500 && i <= 999) return value(common500[static_cast<std::size_t>(i - 500)]);
+  if (mach3 && i < mach3_parameter_end) return value(mach3_parameters[static_cast<std::size_t>(i)]);
   const int col = at < nl.column.size() ? nl.column[at] : 1;
   const bool haas_tool_data = dialect_ == Dialect::haas && ((i >= 1601 && i <= 2000) || (i >= 5401 && i <= 5999));
   if ((i >= 2001 && i <= 2999) || (i >= 10001 && i <= 19999) || haas_tool_data) {
@@ -302,6 +308,10 @@ void FanucFrontEnd::write_var(double index, const MacroValue& value, std::size_t
   }
   if (i >= 500 && i <= 999) {
     common500[static_cast<std::size_t>(i - 500)] = v;
+    return;
+  }
+  if (dialect_ == Dialect::mach3 && i > 0 && i < mach3_parameter_end) {
+    mach3_parameters[static_cast<std::size_t>(i)] = v;
     return;
   }
   const std::string what = fmt::format("#{}={}", i, value.vacant ? "#0" : num(value.v));
@@ -451,7 +461,10 @@ void FanucFrontEnd::dialect_codes(Words& w) {
     if (g == 500 || g == 690 || g == 150 || g == 501) {
       if (g == 500 && (w.has('X') || w.has('Z')))
         refuse(col, name, "the lathe's coordinate system setting (G50 X Z) is not supported");
-      if (g == 500) drop("S");  // G50 S: the spindle speed limit
+      if (g == 500 && w.has('S'))
+        refuse(col, "G50 S",
+               "the lathe's spindle speed limit: lathe programs (X as a diameter, feed per revolution) are not "
+               "supported");
       drop_g(i);
       continue;
     }

@@ -6,7 +6,7 @@
 // common #100-#199 and #500-#999, vacant #0, the system variables of the machine state), expressions
 // in [ ] (fanuc_expression.cpp), IF / GOTO / THEN, WHILE / DO / END, M98 / M99 / M97 subprograms and
 // G65 macro calls (fanuc_control_flow.cpp). Like the LinuxCNC front end it streams: a jump seeks to a
-// line start; the file is indexed (program numbers, N numbers) once, the first time control flow
+// line start; the file is indexed (program numbers, N numbers) the first time control flow
 // needs it.
 #include <array>
 #include <cstddef>
@@ -81,6 +81,9 @@ class FanucFrontEnd final : public DialectFrontEnd {
   std::vector<std::array<Var, 34>> locals;  // per macro call level, #1..#33
   std::array<Var, 100> common100{};         // #100..#199
   std::array<Var, 500> common500{};         // #500..#999
+  // Mach3: every parameter below #5000 is the program's (LinuxCNC's numbering), 0 until set
+  static constexpr int mach3_parameter_end = 5000;
+  std::vector<Var> mach3_parameters;
   MacroValue read_var(double index, std::size_t at);
   void write_var(double index, const MacroValue& value, std::size_t at);
   [[nodiscard]] int var_index(double index, std::size_t at) const;
@@ -89,6 +92,8 @@ class FanucFrontEnd final : public DialectFrontEnd {
   std::function<MacroValue(double, std::size_t)> reader;
 
   // ================================================================ a line
+  // The column of DPRNT / BPRNT / POPEN / PCLOS starting the raw line (after its N number), else 0.
+  static int port_output(std::string_view raw);
   // Reads the statements and words of nl from `pos`; true if words were made.
   bool statements(std::size_t pos, Words& words);
   // #i = expr (several may follow each other); pos at '#'.
@@ -114,11 +119,13 @@ class FanucFrontEnd final : public DialectFrontEnd {
     Pos header;        // the O line
     Pos body;          // the line after it
   };
-  bool indexed = false;
+  bool programs_indexed = false, labels_indexed = false;
   std::vector<Program> programs;                          // in file order
   std::map<long, std::vector<Pos>> labels;                // N number -> lines, in file order
   std::size_t end_offset = static_cast<std::size_t>(-1);  // a closing '%'
-  void index_file();
+  // Reads the whole file once for its program numbers and, with `labels` (GOTO, M97, M99 P), its
+  // N numbers (memory grows with the number of N lines then; M98 alone does not need them).
+  void index_file(bool labels);
   // The extent [begin, end) of the program holding `offset`.
   [[nodiscard]] std::pair<std::size_t, std::size_t> program_extent(std::size_t offset) const;
   [[nodiscard]] const Program* find_program(long number) const;

@@ -101,7 +101,8 @@ struct Block {
   /// passes through [mm], machine coordinates.
   std::array<Vec3, 3> via{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
   int via_count = 0;                 ///< how many entries of `via` are used
-  int canned_cycle = 0;              ///< 81, 82, 83 or 73 if the move was expanded from that cycle, else 0
+  /// 73, 81, 82, 83 (the Fanuc family: also 84, 85, 86, 89) if the move was expanded from that cycle, else 0
+  int canned_cycle = 0;
 
   /// The block's curve, or nullptr for a dwell.
   [[nodiscard]] const Curve* curve() const noexcept;
