@@ -531,26 +531,7 @@ void FanucFrontEnd::dialect_codes(Words& w) {
     }
     ++i;
   }
-  // a motion code beside a non-modal code that uses the axes only sets the mode
-  {
-    int axes_code = -1, motion_index = -1, group01 = -1;
-    for (int i = 0; i < w.g_count; ++i) {
-      const int g = w.g[static_cast<std::size_t>(i)];
-      if (g == 280 || g == 300 || g == 920 || g == 100) axes_code = g;
-      if (g == 0 || g == 10 || g == 20 || g == 30) motion_index = i;
-      if (g == 0 || g == 10 || g == 20 || g == 30 || g == 800 || is_canned_cycle(g)) group01 = g;
-    }
-    if (axes_code >= 0 && motion_index >= 0) {
-      pending_motion = w.g[static_cast<std::size_t>(motion_index)];
-      pending_motion_column = w.g_column[static_cast<std::size_t>(motion_index)];
-      drop_g(motion_index);
-    } else if (group01 >= 0) {
-      pending_motion = -1;  // the block's own motion code replaces it
-    } else if (pending_motion >= 0 && axes_code < 0 && !w.empty()) {
-      w.add_g(pending_motion, pending_motion_column);
-      pending_motion = -1;
-    }
-  }
+  // (a motion code beside G28 / G30 / G92 / G10 only sets the mode: DialectRules::motion_code_beside_nonmodal)
   // P of a dwell: an integer is milliseconds, with a decimal point seconds (G4 X: seconds)
   const bool p_ms = dialect_ != Dialect::mach3 && w.has('P') && (integer_literal >> ('P' - 'A') & 1u);
   if (dwell_block) {

@@ -63,10 +63,6 @@ class FanucFrontEnd final : public DialectFrontEnd {
   std::string main_name;  // "O1234", for messages
   bool decimal_warned = false;
   bool tool_offset_warned = false;
-  // G0 / G1 / G2 / G3 written beside G28 / G30 / G92 / G10 ('G00 G91 G28 Z0'): a Fanuc only sets the
-  // motion mode with it; the executor gets it with the next block that has no motion code of its own
-  int pending_motion = -1;
-  int pending_motion_column = 1;
 
   // The line being read: where it starts, where the next one starts, its number.
   std::size_t line_offset = 0, next_offset = 0;
