@@ -59,7 +59,7 @@ enum Strength {
   grbl_command = 1,
   fanuc_syntax = 2,
   named = 3,
-  fanuc_usage = 4,  // what only a Fanuc-family control accepts (axis words after G80)
+  fanuc_usage = 4,  // what only a Fanuc-family control accepts (axis words after G80, Mach3's G50 / G71)
   extension = 5
 };
 
@@ -130,6 +130,10 @@ DialectChoice detect_dialect(std::string_view name, std::string_view text) {
   static const std::regex g80_re(R"((^|[^0-9.])G0*80(?![0-9.]))");
   static const std::regex group01_re(R"((^|[^0-9.])G0*[0-3](?![0-9.]))");
   static const std::regex axis_words_re(R"(^\s*(N\d+\s*)?[XYZ]\s*[-+.0-9])");
+  // Mach3's G50 (scaling off) and G70 / G71 (inch / mm) in a block of modal codes only (LinuxCNC
+  // has no G50, and its G70 / G71 are lathe cycles with P Q D words; a Fanuc lathe's G50 takes S X Z).
+  static const std::regex mach3_code_re(R"((^|[^0-9.])G0*(50|70|71)(?![0-9.]))");
+  static const std::regex cycle_or_lathe_words_re(R"([PQDUWSXZRIJK]\s*[-+.0-9#\[])");
   static const std::regex grbl_re(R"(^\s*\$(\d+\s*=|[HXJCGNI#$]))");
   // Fanuc's family: program numbers, Macro B control flow, subprogram and macro calls.
   static const std::regex program_number_re(R"(^\s*%?\s*([O:]\d+))");
@@ -195,6 +199,10 @@ DialectChoice detect_dialect(std::string_view name, std::string_view text) {
            fmt::format("axis words without a motion code after G80 on line {} (a Fanuc keeps G0 / G1)", line));
       after_g80 = false;
     }
+    if (!marks[fanuc_usage].found && std::regex_search(code, m, mach3_code_re) &&
+        !std::regex_search(code, cycle_or_lathe_words_re))
+      note(fanuc_usage, Dialect::mach3,
+           fmt::format("Mach3's {} on line {}", first_token(std::string(m[0]).substr(m[1].length())), line));
     std::string word;
     if (auto d = named_control(comments, word)) {
       const std::string reason = fmt::format("a comment naming {} on line {}", word, line);

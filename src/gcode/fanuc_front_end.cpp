@@ -71,8 +71,9 @@ LineOutcome FanucFrontEnd::read_line(std::string_view raw, Words& words) {
   next_offset = input.tell();
   line_no = diag.line();
   raw_line.assign(raw);
-  if (const int at = port_output(raw)) {  // DPRNT[..] / BPRNT / POPEN / PCLOS: free text, no motion
-    seen_block = true;
+  // DPRNT[..] / BPRNT / POPEN / PCLOS: free text, no motion; not a block either (lines a tool put
+  // before the O line leave it the main program's number)
+  if (const int at = port_output(raw)) {
     diag.warn(at, fmt::format("{}: output to a port, ignored (it does not move the axes)",
                               raw_line.substr(static_cast<std::size_t>(at - 1), 5)));
     return LineOutcome::nothing;
