@@ -146,7 +146,7 @@ TEST(GcodeDialect, FanucMotionCodeBesideG28OnlySetsTheMode) {
   EXPECT_DOUBLE_EQ(blocks[3].end.x(), 7.0);
   ReaderOptions linuxcnc;
   linuxcnc.dialect = Dialect::linuxcnc;
-  EXPECT_EQ(error_of(program, linuxcnc), "t.nc:3:9: G28 and G0 in one block: both use the axis words");
+  EXPECT_EQ(error_of(program, linuxcnc), "t.nc:3:9: G28 and G0 in one block: both use the axis words (dialect linuxcnc)");
 }
 
 // An M98 ignored as a machine's own M code would run the subprogram's body once instead of L times.
@@ -155,7 +155,7 @@ TEST(GcodeDialect, SubprogramCallsAreNeverIgnoredInLinuxcnc) {
   linuxcnc.dialect = Dialect::linuxcnc;
   EXPECT_EQ(error_of("G0 X0\nM98 P200 L6\nM2\n", linuxcnc),
             "t.nc:2:1: M98: subprogram calls and returns (M97, M98, M99) are not LinuxCNC's: read the program with "
-            "--dialect fanuc, haas or mach3");
+            "--dialect fanuc, haas or mach3 (dialect linuxcnc)");
 }
 
 // LinuxCNC's SUBROUTINE_PATH: o<name> call of a subroutine the program does not define runs
@@ -224,11 +224,11 @@ TEST(GcodeDialect, LinuxcncPolarCoordinatesAboutTheOriginAndCumulativeInG91) {
   EXPECT_NEAR(blocks[3].end.x(), 0.0, 1e-12);  // G91: radius 5 + 1, angle 180 - 90
   EXPECT_DOUBLE_EQ(blocks[3].end.y(), 6.0);
   EXPECT_EQ(error_of("G21 G91\nG1 @1 ^10 F100\n", linuxcnc),
-            "t.nc:2:4: @ ^: an incremental polar move cannot start at the origin (no angle there)");
+            "t.nc:2:4: @ ^: an incremental polar move cannot start at the origin (no angle there) (dialect linuxcnc)");
   EXPECT_EQ(error_of("G21\nG1 X1 @1 F100\n", linuxcnc),
-            "t.nc:2:4: X: an axis of the plane with @ ^ in one block (polar coordinates give both)");
+            "t.nc:2:4: X: an axis of the plane with @ ^ in one block (polar coordinates give both) (dialect linuxcnc)");
   EXPECT_EQ(error_of("G21 G18\nG1 @1 ^10 F100\n", linuxcnc),
-            "t.nc:2:4: @ ^: LinuxCNC's polar coordinates are in the XY plane only (G17)");
+            "t.nc:2:4: @ ^: LinuxCNC's polar coordinates are in the XY plane only (G17) (dialect linuxcnc)");
   ReaderOptions fanuc;
   fanuc.dialect = Dialect::fanuc;
   EXPECT_EQ(error_of("G1 @1 ^10 F100\n", fanuc),

@@ -126,7 +126,7 @@ TEST(GcodeFanucDialect, ExpressionsFollowFanucsPrecedenceAndFunctions) {
   EXPECT_DOUBLE_EQ(e[1].x(), 4.0 + 2.0 + 8.0 + 3.0 + 12.0);
   EXPECT_DOUBLE_EQ(e[1].y(), 3.0 + 2.0 + 4.0);
   EXPECT_NEAR(e[1].z(), 1.0, 1e-12);
-  EXPECT_EQ(error_of("#1 = 1 / [2 - 2]\n"), "p.nc:1:8: '/[2-2]': division by zero");
+  EXPECT_EQ(error_of("#1 = 1 / [2 - 2]\n"), "p.nc:1:8: '/[2-2]': division by zero (dialect fanuc)");
 }
 
 TEST(GcodeFanucDialect, M98RepeatsAndNestedCallsRunSubprogramsAfterTheMain) {

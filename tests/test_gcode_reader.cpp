@@ -464,7 +464,7 @@ TEST(GcodeReader, OWordEndlessLoopIsAnError) {
   } catch (const InputError& e) {
     message = e.what();
   }
-  EXPECT_EQ(message, "test.ngc:2:1: O1: more than 1000 loop iterations and calls in the program (endless loop?)");
+  EXPECT_EQ(message, "test.ngc:2:1: O1: more than 1000 loop iterations and calls in the program (endless loop?) (dialect linuxcnc)");
   EXPECT_THROW(read("F100\no1 repeat [2000]\no1 endrepeat\n", o), InputError);
   EXPECT_THROW(read("o1 sub\no1 call\no1 endsub\no1 call\n", o), InputError);  // recursion
 }
@@ -556,9 +556,9 @@ TEST(GcodeExpression, OperatorsFunctionsAndPrecedence) {
 }
 
 TEST(GcodeReader, ErrorsNameLineColumnAndWord) {
-  EXPECT_EQ(error_of("F100\nG1 X1\n  G1 X[#<a>]\n"), "test.ngc:3:8: #<A>: undefined parameter");
+  EXPECT_EQ(error_of("F100\nG1 X1\n  G1 X[#<a>]\n"), "test.ngc:3:8: #<A>: undefined parameter (dialect linuxcnc)");
   EXPECT_EQ(error_of("G0 X0 Y0\nF1\nG06.2 P4 K0 X0 Y0\nK0 X1 Y0\nK0 X1 Y1\nK0 X2 Y1\nK1 X3 Y1\nK2 X4 Y0\nK2\nK2\nK2\n"),
-            "test.ngc:3:1: G06.2: 9 knots given, 10 needed (6 control points + rank 4)");
+            "test.ngc:3:1: G06.2: 9 knots given, 10 needed (6 control points + rank 4) (dialect linuxcnc)");
 }
 
 // Regression: an arc whose end lies within the radius tolerance but off its circle (here 2.54 um,

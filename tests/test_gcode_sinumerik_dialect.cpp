@@ -119,8 +119,8 @@ TEST(GcodeSinumerik, LabelsGotofGotobAndBlockNumbers) {
   EXPECT_EQ(b[2].end.x(), 40.0);
   EXPECT_EQ(b[3].end.x(), 50.0);
   EXPECT_EQ(b[3].location.line, 4);
-  EXPECT_EQ(error_of("GOTOF NIRGENDS\nM30\n"), "s.mpf:1:1: GOTOF NIRGENDS: jump target not found after this line");
-  EXPECT_EQ(error_of("G0 X1\nGOTOB N5\nM30\n"), "s.mpf:2:1: GOTOB N5: jump target not found before this line");
+  EXPECT_EQ(error_of("GOTOF NIRGENDS\nM30\n"), "s.mpf:1:1: GOTOF NIRGENDS: jump target not found after this line (dialect sinumerik)");
+  EXPECT_EQ(error_of("G0 X1\nGOTOB N5\nM30\n"), "s.mpf:2:1: GOTOB N5: jump target not found before this line (dialect sinumerik)");
 }
 
 TEST(GcodeSinumerik, IfElseWhileForRepeat) {
@@ -201,9 +201,9 @@ TEST(GcodeSinumerik, AnEndlessLoopIsStoppedByTheLoopLimit) {
   ReaderOptions o = sinumerik();
   o.max_loop_iterations = 50;
   EXPECT_EQ(error_of("G1 F100 X1\nLOOP\n  X=2\nENDLOOP\nM30\n", o),
-            "s.mpf:4:1: LOOP: more than 50 loop iterations, jumps back and calls in the program (endless loop?)");
+            "s.mpf:4:1: LOOP: more than 50 loop iterations, jumps back and calls in the program (endless loop?) (dialect sinumerik)");
   EXPECT_EQ(error_of("L1: G1 F100 X1\nGOTOB L1\nM30\n", o),
-            "s.mpf:2:1: L1: more than 50 loop iterations, jumps back and calls in the program (endless loop?)");
+            "s.mpf:2:1: L1: more than 50 loop iterations, jumps back and calls in the program (endless loop?) (dialect sinumerik)");
 }
 
 TEST(GcodeSinumerik, CrArcsHaveTheirCentreAndDirection) {
@@ -307,7 +307,7 @@ TEST(GcodeSinumerik, ScaleMakesArcsLargerAndRefusesUnevenPlanes) {
   EXPECT_EQ(
       error_of("G1 F100 X10\nSCALE X2 Y3\nG2 X20 CR=10\nM30\n"),
       "s.mpf:3:1: G2: the programmable frame scales the arc's plane unevenly: the arc would not be a circle in the "
-      "machine");
+      "machine (dialect sinumerik)");
 }
 
 TEST(GcodeSinumerik, AMirroredArcTurnsTheOtherWay) {
@@ -350,7 +350,7 @@ TEST(GcodeSinumerik, CtArcsAreTangentToThePreviousMove) {
   EXPECT_LT(a2.frame().normal.z(), 0.0);
   EXPECT_EQ(error_of("CT X5 Y5\nM30\n"),
             "s.mpf:1:1: CT: no direction to be tangent to (a tangential arc needs a move before it that is not along "
-            "the plane's normal)");
+            "the plane's normal) (dialect sinumerik)");
 }
 
 TEST(GcodeSinumerik, Cycle81And82ExpandIntoTheirMoves) {
@@ -490,9 +490,9 @@ TEST(GcodeSinumerik, RefusalsNameTheLineTheFeatureAndTheDialect) {
   EXPECT_EQ(
       error_of("G0 X0 (COMMENT)\nM30\n"),
       "s.mpf:1:7: '(': unexpected; it is not a comment on a Sinumerik (comments start with ';'; dialect sinumerik)");
-  EXPECT_EQ(error_of("G1 X=UNDEF\nM30\n"), "s.mpf:1:6: UNDEF: variable not defined (DEF it first)");
-  EXPECT_EQ(error_of("IF R1==1\nG0 X1\nM30\n"), "s.mpf:1:1: IF: ENDIF not found before the end of the program");
-  EXPECT_EQ(error_of("WHILE TRUE\nG0 X1\n"), "s.mpf:1:1: WHILE: the program ends inside it (ENDWHILE missing)");
+  EXPECT_EQ(error_of("G1 X=UNDEF\nM30\n"), "s.mpf:1:6: UNDEF: variable not defined (DEF it first) (dialect sinumerik)");
+  EXPECT_EQ(error_of("IF R1==1\nG0 X1\nM30\n"), "s.mpf:1:1: IF: ENDIF not found before the end of the program (dialect sinumerik)");
+  EXPECT_EQ(error_of("WHILE TRUE\nG0 X1\n"), "s.mpf:1:1: WHILE: the program ends inside it (ENDWHILE missing) (dialect sinumerik)");
 }
 
 TEST(GcodeSinumerik, ARealisticProgramWithItsHeader) {

@@ -5,6 +5,8 @@
 
 #include <kontur/gcode/reader.hpp>
 
+#include <fmt/format.h>
+
 namespace kontur::gcode {
 
 struct Reader::Impl {
@@ -83,8 +85,16 @@ bool Reader::next(Block& out) {
     if (r.finished || r.executor.ended()) return false;
     try {
       r.read_more();
-    } catch (...) {
+    } catch (const InputError& e) {
       r.finished = true;  // after an error the reader hands out nothing more
+      queue.clear();
+      r.head = 0;
+      // Every refusal names the dialect it was read in (front ends' own messages already do).
+      const std::string message = e.what();
+      if (message.find(fmt::format("dialect {}", to_string(r.dialect.dialect))) != std::string::npos) throw;
+      throw InputError(e.rule(), fmt::format("{} (dialect {})", message, to_string(r.dialect.dialect)));
+    } catch (...) {
+      r.finished = true;
       queue.clear();
       r.head = 0;
       throw;
