@@ -74,6 +74,8 @@ INSTANTIATE_TEST_SUITE_P(
                       "Mach3's G50 on line 1"},
         DetectionCase{"lathe_g50_is_no_mach3_mark", "p.nc", "G50 S2000\nG0 X0\nM30\n", Dialect::linuxcnc,
                       "no mark of another dialect in the first 3 lines: LinuxCNC's reading"},
+        DetectionCase{"haas_local_subprogram_call", "p.nc", "O1000\nG0 X0\nM97 P100\nM30\nN100 G0 X1\nM99\n",
+                      Dialect::haas, "program number O1000 on line 1, and Haas's M97 on line 3"},
         DetectionCase{"fanuc_subprogram_call", "p.nc", "G0 X0\nM98 P1000 L2\nM30\n", Dialect::fanuc,
                       "'M98 P' on line 2"},
         DetectionCase{"mitsubishi_named", "p.nc", "O1000\n(MITSUBISHI M80)\nG0 X0\nM30\n", Dialect::mitsubishi,

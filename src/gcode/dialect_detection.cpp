@@ -147,8 +147,7 @@ DialectChoice detect_dialect(std::string_view name, std::string_view text) {
     m = Mark{d, std::move(reason), true};
   };
   std::optional<Dialect> fanuc_family_name;  // a comment naming Haas / Mitsubishi / Mach3 / Fanuc
-  std::string fanuc_family_word;
-  long fanuc_family_line = 0;
+  std::string fanuc_family_reason;  // "a comment naming HAAS on line 3", "Haas's M97 on line 5"
 
   std::string code, comments;
   long line = 0;
@@ -210,14 +209,13 @@ DialectChoice detect_dialect(std::string_view name, std::string_view text) {
       if (!fanuc_family_name && (*d == Dialect::haas || *d == Dialect::mitsubishi || *d == Dialect::mach3 ||
                                  *d == Dialect::fanuc)) {
         fanuc_family_name = *d;
-        fanuc_family_word = word;
-        fanuc_family_line = line;
+        fanuc_family_reason = fmt::format("a comment naming {} on line {}", word, line);
       }
     }
-    if (code.find("G187") != std::string::npos && !fanuc_family_name) {  // Haas's accuracy control
+    static const std::regex haas_code_re(R"((^|[^0-9.])(G187|M97\s*P))");  // accuracy control, local call
+    if (!fanuc_family_name && std::regex_search(code, m, haas_code_re)) {
       fanuc_family_name = Dialect::haas;
-      fanuc_family_word = "G187 (Haas)";
-      fanuc_family_line = line;
+      fanuc_family_reason = fmt::format("Haas's {} on line {}", first_token(m[2]), line);
     }
   }
   std::string ext;
@@ -229,8 +227,7 @@ DialectChoice detect_dialect(std::string_view name, std::string_view text) {
   for (Mark& m : marks) {
     if (!m.found) continue;
     if ((&m == &marks[fanuc_syntax] || &m == &marks[fanuc_usage]) && fanuc_family_name) {
-      return {*fanuc_family_name, fmt::format("{}, and a comment naming {} on line {}", m.reason, fanuc_family_word,
-                                              fanuc_family_line)};
+      return {*fanuc_family_name, fmt::format("{}, and {}", m.reason, fanuc_family_reason)};
     }
     return {m.dialect, m.reason};
   }
