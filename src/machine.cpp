@@ -295,6 +295,14 @@ Machine read_linuxcnc_ini(const std::filesystem::path& file) {
       at = colon + 1;
     }
   }
+  if (auto v = number("RS274NGC", "CENTER_ARC_RADIUS_TOLERANCE_MM")) {
+    check_positive(src, "[RS274NGC] CENTER_ARC_RADIUS_TOLERANCE_MM [mm]", *v);
+    m.arc_radius_tolerance_mm = *v;
+  }
+  if (auto v = number("RS274NGC", "CENTER_ARC_RADIUS_TOLERANCE_INCH")) {
+    check_positive(src, "[RS274NGC] CENTER_ARC_RADIUS_TOLERANCE_INCH [in]", *v);
+    m.arc_radius_tolerance_inch = *v;
+  }
   if (const auto* d = get("KONTUR", "DIALECT")) {
     m.dialect = gcode::parse_dialect(d->first);
     if (!m.dialect)

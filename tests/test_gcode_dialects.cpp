@@ -237,6 +237,17 @@ TEST(GcodeDialect, LinuxcncPolarCoordinatesAboutTheOriginAndCumulativeInG91) {
             "t.nc:1:4: '@': LinuxCNC's polar coordinates (@ radius, ^ angle) are not words of dialect fanuc");
 }
 
+// LinuxCNC's INI CENTER_ARC_RADIUS_TOLERANCE_MM: radii 0.02 mm apart read by default (0.0283), refused at 0.001.
+TEST(GcodeDialect, ArcRadiusToleranceFromTheMachine) {
+  const std::string program = "G21 G90 G17\nG0 X0 Y0\nG2 X10.02 Y0 I5 J0 F100\nM2\n";
+  ReaderOptions options;
+  options.dialect = Dialect::linuxcnc;
+  EXPECT_EQ(read(program, options).size(), 2u);
+  options.arc_radius_tolerance_mm = 0.001;
+  EXPECT_NE(error_of(program, options).find("t.nc:3:1: G2: radius to the start 5 mm and to the end"), std::string::npos)
+      << error_of(program, options);
+}
+
 TEST(GcodeDialect, GrblSettingLinesAreIgnoredWithAWarningAndHomingOrJoggingIsRefused) {
   ReaderOptions grbl;
   grbl.dialect = Dialect::grbl;

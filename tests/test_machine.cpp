@@ -106,6 +106,27 @@ TEST(Machine, TomlOverridesAndErrors) {
                "position-range", "min position 5 must be below max position -5");
 }
 
+// The INI's G-code settings: the dialect, the subroutine path (relative to the INI) and LinuxCNC's
+// centre-format arc radius tolerances.
+TEST(Machine, IniRs274ngcSettings) {
+  const fs::path p = write_temp("rs274.ini",
+                                "[RS274NGC]\nSUBROUTINE_PATH = subs:../lib\nCENTER_ARC_RADIUS_TOLERANCE_MM = 0.001\n"
+                                "CENTER_ARC_RADIUS_TOLERANCE_INCH = 0.0001\n[KONTUR]\nDIALECT = Haas\n"
+                                "[TRAJ]\nCOORDINATES = X\n[AXIS_0]\nMAX_VELOCITY = 1\nMAX_ACCELERATION = 1\n");
+  const Machine m = read_machine(p);
+  fs::remove(p);
+  EXPECT_EQ(m.dialect, gcode::Dialect::haas);
+  ASSERT_EQ(m.subroutine_path.size(), 2u);
+  EXPECT_EQ(m.subroutine_path[0], (p.parent_path() / "subs").string());
+  EXPECT_EQ(m.subroutine_path[1], (p.parent_path().parent_path() / "lib").string());
+  EXPECT_EQ(m.arc_radius_tolerance_mm, 0.001);
+  EXPECT_EQ(m.arc_radius_tolerance_inch, 0.0001);
+  expect_error("dialect.ini", "[KONTUR]\nDIALECT = okuma\n[TRAJ]\nCOORDINATES = X\n[AXIS_0]\nMAX_VELOCITY = 1\n"
+               "MAX_ACCELERATION = 1\n", "dialect", "DIALECT = okuma: not a G-code dialect");
+  expect_error("arctol.ini", "[RS274NGC]\nCENTER_ARC_RADIUS_TOLERANCE_MM = 0\n[TRAJ]\nCOORDINATES = X\n[AXIS_0]\n"
+               "MAX_VELOCITY = 1\nMAX_ACCELERATION = 1\n", "limit-positive", "CENTER_ARC_RADIUS_TOLERANCE_MM");
+}
+
 TEST(Machine, IniErrors) {
   expect_error("units.ini", "[TRAJ]\nLINEAR_UNITS = furlong\n", "linear-units", "LINEAR_UNITS = furlong");
   expect_error("noaxis.ini", "[TRAJ]\nCOORDINATES = X Y\n[AXIS_0]\nMAX_VELOCITY = 1\nMAX_ACCELERATION = 1\n",

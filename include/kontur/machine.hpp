@@ -5,6 +5,7 @@
 // LinuxCNC INI file; an embedded default serves when none is given. All values in [mm], [s].
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,10 @@ struct Machine {
   /// Folders searched for subroutines in files of their own (TOML `subroutine_path`, INI
   /// `[RS274NGC] SUBROUTINE_PATH`, relative to the machine file); `--subroutine-path` overrides it.
   std::vector<std::string> subroutine_path;
+  /// LinuxCNC's INI [RS274NGC] CENTER_ARC_RADIUS_TOLERANCE_MM [mm] and _INCH [in]: how far the two
+  /// radii of a centre-format arc may differ (gcode::ReaderOptions); none: LinuxCNC's defaults.
+  std::optional<double> arc_radius_tolerance_mm;
+  std::optional<double> arc_radius_tolerance_inch;
 
   /// The limits of axis `name` (X, Y, Z, A, B, C), or nullptr.
   [[nodiscard]] const AxisLimits* axis(char name) const noexcept;

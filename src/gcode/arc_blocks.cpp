@@ -42,9 +42,9 @@ void Executor::arc(bool clockwise, const Vec3& to, int col) {
   const Vec3 s_p = in_plane(pos), e_p = in_plane(to);
   Vec3 centre;
   // LinuxCNC's radius check: a difference up to its absolute tolerance (0.0283 mm in a mm program,
-  // 0.00283 in in an inch program), or up to 100 times that where it is within 0.1 % of the radius.
-  const double tol_abs = modal.units == Units::inch ? tolerances::gcode_arc_radius_absolute_inch * 25.4
-                                                    : tolerances::gcode_arc_radius_absolute_mm;
+  // 0.00283 in in an inch program, or the INI's CENTER_ARC_RADIUS_TOLERANCE_*), or up to 100 times
+  // that where it is within 0.1 % of the radius.
+  const double tol_abs = modal.units == Units::inch ? arc_tolerance_inch_ * 25.4 : arc_tolerance_mm_;
   auto allowed = [&](double radius) {  // the largest difference of radii accepted [mm]
     return std::min(std::max(tol_abs, tolerances::gcode_arc_radius_relative * radius),
                     tolerances::gcode_arc_radius_relative_cap * tol_abs);

@@ -53,6 +53,12 @@ public:
 
   /// The rules of the program's dialect (before the first block; LinuxCNC's by default).
   void set_rules(const DialectRules& rules) noexcept { rules_ = rules; }
+  /// The absolute tolerances of a centre-format arc's radii in mm programs [mm] and inch programs
+  /// [in] (ReaderOptions::arc_radius_tolerance_*).
+  void set_arc_radius_tolerances(double mm, double inch) noexcept {
+    arc_tolerance_mm_ = mm;
+    arc_tolerance_inch_ = inch;
+  }
   /// Runs one block; its blocks are appended to blocks(). Throws InputError at the first error.
   /// `words` must stay valid until the next call (a spline or circle may refer to it).
   void execute(const Words& words);
@@ -96,6 +102,8 @@ private:
 
   ModalState modal;
   DialectRules rules_;
+  double arc_tolerance_mm_ = tolerances::gcode_arc_radius_absolute_mm;      // [mm]
+  double arc_tolerance_inch_ = tolerances::gcode_arc_radius_absolute_inch;  // [in]
   int group01_motion = -1;  // the last G0 / G1 / G2 / G3 motion mode (times 10), -1 before one
   Vec3 pos = Vec3::Zero();  // program coordinates [mm]
   CoordinateFrames frames;

@@ -34,6 +34,8 @@ struct Reader::Impl {
     dialect = std::move(choice);
     opt.dialect = dialect.dialect;
     executor.set_rules(detail::rules_of(dialect.dialect));
+    executor.set_arc_radius_tolerances(opt.arc_radius_tolerance_mm.value_or(tolerances::gcode_arc_radius_absolute_mm),
+                                       opt.arc_radius_tolerance_inch.value_or(tolerances::gcode_arc_radius_absolute_inch));
     front_end = detail::make_front_end(dialect.dialect,
                                        detail::DialectServices{dialect.dialect, input, params, diag, opt, executor, &executor});
   }

@@ -40,6 +40,8 @@ gcode::ReaderOptions Pipeline::reader_options() const {
     o.dialect_reason = "the machine file's dialect";
   }
   if (o.subroutine_path.empty()) o.subroutine_path = machine_.subroutine_path;
+  if (!o.arc_radius_tolerance_mm) o.arc_radius_tolerance_mm = machine_.arc_radius_tolerance_mm;
+  if (!o.arc_radius_tolerance_inch) o.arc_radius_tolerance_inch = machine_.arc_radius_tolerance_inch;
   return o;
 }
 

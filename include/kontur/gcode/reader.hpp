@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -42,6 +43,11 @@ struct ReaderOptions {
   /// of a subroutine the program does not define runs `name.ngc`, as LinuxCNC's
   /// [RS274NGC] SUBROUTINE_PATH); empty: the program's own folder.
   std::vector<std::string> subroutine_path;
+  /// The absolute tolerance of a centre-format arc's two radii in a mm program [mm] and in an inch
+  /// program [in] (LinuxCNC's INI [RS274NGC] CENTER_ARC_RADIUS_TOLERANCE_MM / _INCH); none:
+  /// tolerances::gcode_arc_radius_absolute_mm / _inch, LinuxCNC's defaults.
+  std::optional<double> arc_radius_tolerance_mm;
+  std::optional<double> arc_radius_tolerance_inch;
 };
 
 /// Reads a program and hands out its blocks one by one.
