@@ -101,6 +101,13 @@ std::string data_of(const std::string& html) {
   return html.substr(a + open.size(), b - a - open.size());
 }
 
+// -o /dev/null: the device is written to, not replaced by a renamed temporary file.
+TEST(AtomicFile, WritingToADeviceKeepsTheDevice) {
+  ASSERT_TRUE(std::filesystem::is_character_file("/dev/null"));
+  kontur::write_file_atomically("/dev/null", [](std::ostream& out) { out << "setpoints\n"; }, {});
+  EXPECT_TRUE(std::filesystem::is_character_file("/dev/null"));
+}
+
 TEST(HtmlReport, DecimationKeepsEveryBucketsExtremaAndTheEnds) {
   std::mt19937 rng(42);
   std::normal_distribution<double> noise(0.0, 1.0);

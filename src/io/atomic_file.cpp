@@ -49,6 +49,17 @@ void write_file_atomically(const fs::path& path, const std::function<void(std::o
   if (!fs::is_directory(dir, ec))
     throw InputError("output-write", fmt::format("{}: the directory {} does not exist", path.string(), dir.string()));
 
+  // A device or a pipe (-o /dev/null, a FIFO) is written to as it is: renaming the temporary file
+  // over it would replace the device with a file (a run with -o /dev/null did that).
+  if (fs::exists(path, ec) && !fs::is_regular_file(path, ec)) {
+    std::ofstream out(path, std::ios::binary);
+    if (!out) throw InputError("output-write", fmt::format("{}: cannot be opened for writing", path.string()));
+    write(out);
+    out.flush();
+    if (!out) throw InputError("output-write", fmt::format("{}: writing failed", path.string()));
+    return;
+  }
+
   // Create the temporary file exclusively, so that no other file is ever truncated.
   fs::path temp;
   for (int attempt = 0;; ++attempt) {
