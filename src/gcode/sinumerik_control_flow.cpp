@@ -589,18 +589,11 @@ std::vector<std::pair<SinumerikFrontEnd::VarType, std::string>> SinumerikFrontEn
     const int col = c.col();
     std::string_view type_name = identifier(c);
     if (type_name == "VAR") type_name = identifier(c);
-    VarType type = VarType::real;
-    if (type_name == "REAL")
-      type = VarType::real;
-    else if (type_name == "INT")
-      type = VarType::integer;
-    else if (type_name == "BOOL")
-      type = VarType::boolean;
-    else if (type_name == "CHAR")
-      type = VarType::character;
-    else
+    const std::optional<VarType> named = var_type_named(type_name);
+    if (!named || *named == VarType::string || *named == VarType::axis)
       fail(col, "unsupported",
            fmt::format("PROC: parameters of type {} are not supported (REAL INT BOOL CHAR)", type_name));
+    const VarType type = *named;
     const std::string name(identifier(c));
     if (name.empty()) fail(c.col(), "syntax", "PROC: a parameter name expected");
     out.emplace_back(type, name);

@@ -238,15 +238,7 @@ double SinumerikFrontEnd::primary(Cursor& c) {
   if (name == "TRUE") return 1.0;
   if (name == "FALSE") return 0.0;
   if (c.peek() == '(') return function(c, name, col);
-  if (name == "R" && c.peek() == '[') {
-    ++c.p;
-    const double i = expr(c);
-    if (!c.eat(']')) fail(c.col(), "syntax", "R[: ']' expected");
-    const double r = std::round(i);
-    if (std::abs(i - r) > 1e-9 || r < 0 || r >= r_count)
-      fail(col, "parameter-range", fmt::format("R[{}]: R parameters are R0 .. R{}", num(i), r_count - 1));
-    return r_[static_cast<std::size_t>(r)];
-  }
+  if (name == "R" && c.peek() == '[') return r_[r_index(c, col)];
   if (name.size() > 1 && name[0] == 'R' &&
       std::all_of(name.begin() + 1, name.end(), [](char d) { return d >= '0' && d <= '9'; })) {
     const long r = std::strtol(std::string(name.substr(1)).c_str(), nullptr, 10);

@@ -794,24 +794,12 @@ void SinumerikFrontEnd::define(Cursor& c) {
   const int col = c.col();
   std::string_view type_name = identifier(c);
   if (type_name == "NCK" || type_name == "CHAN" || type_name == "LUD" || type_name == "PUD") type_name = identifier(c);
-  VarType type;
-  if (type_name == "REAL")
-    type = VarType::real;
-  else if (type_name == "INT")
-    type = VarType::integer;
-  else if (type_name == "BOOL")
-    type = VarType::boolean;
-  else if (type_name == "CHAR")
-    type = VarType::character;
-  else if (type_name == "STRING")
-    type = VarType::string;
-  else if (type_name == "AXIS")
-    type = VarType::axis;
-  else if (type_name == "FRAME")
+  const std::optional<VarType> named = var_type_named(type_name);
+  if (!named && type_name == "FRAME")
     fail(col, "unsupported",
          "DEF FRAME: frame variables are not supported by Kontur (dialect sinumerik); use TRANS / ROT");
-  else
-    fail(col, "syntax", fmt::format("DEF {}: unknown type (REAL INT BOOL CHAR STRING[n] AXIS)", type_name));
+  if (!named) fail(col, "syntax", fmt::format("DEF {}: unknown type (REAL INT BOOL CHAR STRING[n] AXIS)", type_name));
+  const VarType type = *named;
   if (type == VarType::string) {  // STRING[n]
     if (!c.eat('[')) fail(c.col(), "syntax", "DEF STRING: its length [n] missing");
     (void)expr(c);
@@ -849,17 +837,29 @@ void SinumerikFrontEnd::define(Cursor& c) {
   if (!c.end()) fail(c.col(), "syntax", fmt::format("'{}': unexpected after DEF", c.t.substr(c.p, 16)));
 }
 
+std::optional<SinumerikFrontEnd::VarType> SinumerikFrontEnd::var_type_named(std::string_view name) {
+  if (name == "REAL") return VarType::real;
+  if (name == "INT") return VarType::integer;
+  if (name == "BOOL") return VarType::boolean;
+  if (name == "CHAR") return VarType::character;
+  if (name == "STRING") return VarType::string;
+  if (name == "AXIS") return VarType::axis;
+  return std::nullopt;
+}
+
+std::size_t SinumerikFrontEnd::r_index(Cursor& c, int col) {
+  ++c.p;  // '['
+  const double i = expr(c);
+  if (!c.eat(']')) fail(c.col(), "syntax", "R[: ']' expected");
+  const double r = std::round(i);
+  if (std::abs(r - i) > 1e-9 || r < 0 || r >= r_count)
+    fail(col, "parameter-range", fmt::format("R[{}]: R parameters are R0 .. R{}", num(i), r_count - 1));
+  return static_cast<std::size_t>(r);
+}
+
 double* SinumerikFrontEnd::lvalue(Cursor& c, std::string_view name, int col, VarType* type) {
   *type = VarType::real;
-  if (name == "R" && c.peek() == '[') {
-    ++c.p;
-    const double i = expr(c);
-    if (!c.eat(']')) fail(c.col(), "syntax", "R[: ']' expected");
-    const double r = std::round(i);
-    if (std::abs(r - i) > 1e-9 || r < 0 || r >= r_count)
-      fail(col, "parameter-range", fmt::format("R[{}]: R parameters are R0 .. R{}", num(i), r_count - 1));
-    return &r_[static_cast<std::size_t>(r)];
-  }
+  if (name == "R" && c.peek() == '[') return &r_[r_index(c, col)];
   if (Variable* v = find_var(name)) {
     *type = v->type;
     if (v->is_array) {

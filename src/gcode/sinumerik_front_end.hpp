@@ -171,6 +171,10 @@ class SinumerikFrontEnd final : public DialectFrontEnd {
   [[nodiscard]] Variable* find_var(std::string_view name);
   void define(Cursor& c);
   double* lvalue(Cursor& c, std::string_view name, int col, VarType* type);
+  // The type a DEF or PROC parameter names (REAL INT BOOL CHAR STRING AXIS); none for another word.
+  [[nodiscard]] static std::optional<VarType> var_type_named(std::string_view name);
+  // After "R" at '[': the index of R[expression], checked against R0 .. R(r_count - 1).
+  std::size_t r_index(Cursor& c, int col);
   void assign(Cursor& c, std::string_view name, int col);
   static double store(VarType type, double v);
 
