@@ -65,17 +65,25 @@ std::string SinumerikFrontEnd::scan_keyword(bool& single_if, Head& head) {
   return kw;
 }
 
-std::string SinumerikFrontEnd::skip_to(const char* open, const char* middle, const char* close) {
-  const long from = diag.line();
-  int depth = 0;
+bool SinumerikFrontEnd::next_scanned_line(std::string& kw, bool& single_if, Head& head) {
   std::string_view raw;
   while (in().read_line(raw)) {
     prepare(raw);
     if (cur.end()) continue;
-    if (cur.peek() == '%') break;
-    bool single_if = false;
-    Head head;
-    const std::string kw = scan_keyword(single_if, head);
+    if (cur.peek() == '%') return false;
+    kw = scan_keyword(single_if, head);
+    return true;
+  }
+  return false;
+}
+
+std::string SinumerikFrontEnd::skip_to(const char* open, const char* middle, const char* close) {
+  const long from = diag.line();
+  int depth = 0;
+  std::string kw;
+  bool single_if = false;
+  Head head;
+  while (next_scanned_line(kw, single_if, head)) {
     if (kw == "PROC") break;
     if (kw == open && (kw != "IF" || !single_if)) {
       ++depth;
@@ -95,14 +103,10 @@ bool SinumerikFrontEnd::scan_forward(const std::string& label, long number) {
   const long resume_line = diag.line() + 1;
   const std::vector<Frame> saved = frames;
   int depth = 0;
-  std::string_view raw;
-  while (in().read_line(raw)) {
-    prepare(raw);
-    if (cur.end()) continue;
-    if (cur.peek() == '%') break;
-    bool single_if = false;
-    Head head;
-    const std::string kw = scan_keyword(single_if, head);
+  std::string kw;
+  bool single_if = false;
+  Head head;
+  while (next_scanned_line(kw, single_if, head)) {
     if ((!label.empty() && head.label == label) || (number >= 0 && head.n == number)) {
       in().seek(in().line_start(), diag.line());
       return true;

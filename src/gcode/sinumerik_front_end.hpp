@@ -227,6 +227,9 @@ class SinumerikFrontEnd final : public DialectFrontEnd {
   // The first word of a line read while scanning (after its number and label), or "" for a
   // deleted or empty line; `single_if`: an IF with its GOTO on the line.
   std::string scan_keyword(bool& single_if, Head& head);
+  // Reads the next line with content of this program without running it, into kw / single_if /
+  // head (scan_keyword); false at the end of the input or at a '%' header (the next program).
+  bool next_scanned_line(std::string& kw, bool& single_if, Head& head);
   [[nodiscard]] bool in_call() const noexcept;
 
   // ---- cycles (sinumerik_cycles.cpp)
