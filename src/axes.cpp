@@ -21,6 +21,7 @@ AxisLayout AxisLayout::from_letters(std::string_view letters) {
     l.letters_[i] = c;
     l.kinds_[i] = (c == 'A' || c == 'B' || c == 'C') ? AxisKind::rotary : AxisKind::linear;
     if (c == 'X' || c == 'Y' || c == 'Z') l.tool_[static_cast<std::size_t>(c - 'X')] = l.size_;
+    if (const int e = extra_axis_index(c); e >= 0) l.extra_[static_cast<std::size_t>(e)] = l.size_;
     ++l.size_;
   }
   return l;
@@ -44,6 +45,26 @@ Vec3 AxisLayout::tool(const AxisVector& a) const noexcept {
   for (int k = 0; k < 3; ++k)
     if (tool_[static_cast<std::size_t>(k)] >= 0) p[k] = a[tool_[static_cast<std::size_t>(k)]];
   return p;
+}
+
+AxisVector AxisLayout::from_tool(const Vec3& p, const ExtraAxes& extra) const noexcept {
+  AxisVector a = from_tool(p);
+  for (std::size_t e = 0; e < extra_.size(); ++e)
+    if (extra_[e] >= 0) a[extra_[e]] = extra[e];
+  return a;
+}
+
+ExtraAxes AxisLayout::extra(const AxisVector& a) const noexcept {
+  ExtraAxes x{};
+  for (std::size_t e = 0; e < extra_.size(); ++e)
+    if (extra_[e] >= 0) x[e] = a[extra_[e]];
+  return x;
+}
+
+bool AxisLayout::has_extra() const noexcept {
+  for (const int e : extra_)
+    if (e >= 0) return true;
+  return false;
 }
 
 }  // namespace kontur

@@ -2,8 +2,9 @@
 // The machine's axes as every stage after planning sees them: an axis vector (one coordinate per
 // axis, at most max_axes, no allocation) and its layout (the letters in order, linear [mm] or
 // rotary [deg], where the tool point's X Y Z sit, and the rule a feed applies by). The tool path
-// (X Y Z, what curves describe) and the axis vector are kept apart: a later kinematics stage maps
-// one to the other. Today the layout is X Y Z, and the axis vector equals the tool point.
+// (X Y Z, what curves describe) and the extra axes (A B C U V W, ExtraAxes) are kept apart: a
+// later kinematics stage (5-axis tool-centre-point) maps them to the axis vector. Today the axis
+// vector is the tool point's X Y Z and the extra axes, each where the layout puts it.
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
@@ -19,6 +20,19 @@ inline constexpr int max_axes = 9;
 /// One coordinate per axis, in the layout's order [mm] (linear) or [deg] (rotary). Fixed capacity,
 /// dynamic size: never allocates.
 using AxisVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, max_axes, 1>;
+
+/// The axes beside the tool point's X Y Z, in this order: A B C rotary [deg], U V W linear [mm].
+inline constexpr char extra_axis_letters[] = "ABCUVW";
+/// Number of extra axes.
+inline constexpr int extra_axis_count = 6;
+/// Positions of the extra axes, in extra_axis_letters' order: A B C [deg], U V W [mm].
+using ExtraAxes = std::array<double, extra_axis_count>;
+/// Index of an extra axis letter in ExtraAxes (A = 0 .. W = 5), or -1 (X Y Z and others).
+[[nodiscard]] constexpr int extra_axis_index(char letter) noexcept {
+  for (int i = 0; i < extra_axis_count; ++i)
+    if (extra_axis_letters[i] == letter) return i;
+  return -1;
+}
 
 /// Linear axes move in [mm], rotary axes turn in [deg].
 enum class AxisKind { linear, rotary };
@@ -53,6 +67,12 @@ class AxisLayout {
   [[nodiscard]] AxisVector from_tool(const Vec3& p) const noexcept;
   /// The tool point X Y Z of an axis vector (an axis the layout lacks: 0).
   [[nodiscard]] Vec3 tool(const AxisVector& a) const noexcept;
+  /// The axis vector of a tool point and the extra axes (an extra axis the layout lacks is dropped).
+  [[nodiscard]] AxisVector from_tool(const Vec3& p, const ExtraAxes& extra) const noexcept;
+  /// The extra axes of an axis vector (an axis the layout lacks: 0).
+  [[nodiscard]] ExtraAxes extra(const AxisVector& a) const noexcept;
+  /// True if the layout has any of A B C U V W.
+  [[nodiscard]] bool has_extra() const noexcept;
 
   friend bool operator==(const AxisLayout&, const AxisLayout&) = default;
 
@@ -60,6 +80,7 @@ class AxisLayout {
   std::array<char, max_axes> letters_{};
   std::array<AxisKind, max_axes> kinds_{};
   std::array<int, 3> tool_{-1, -1, -1};  // index of X, Y, Z (-1: absent)
+  std::array<int, extra_axis_count> extra_{-1, -1, -1, -1, -1, -1};  // index of A .. W (-1: absent)
   int size_ = 0;
   FeedRule feed_rule_ = FeedRule::linuxcnc;
 };

@@ -16,6 +16,12 @@ inline constexpr int max_derivative = 3;
 /// multiplicities of a clamped knot vector are checked.
 inline constexpr double knot_equal_relative = 1e-12;
 
+// ---- extra axes (A B C U V W)
+/// A move whose tool path (X Y Z) is at most this long [mm] while an extra axis moves runs as a
+/// move of the extra axes alone: the feed applies to U V W's distance, else to A B C's angle
+/// (LinuxCNC's rule), and the tool point stands at the move's start.
+inline constexpr double extra_axes_tool_still_mm = 1e-9;
+
 // ---- curve length
 /// Default relative accuracy of Kontur's adaptive Gauss-Kronrod length.
 inline constexpr double length_relative = 1e-13;

@@ -3,6 +3,7 @@
 // length and shape come from one place), its feed, the modal state it runs in and where it came
 // from. All lengths are in [mm] and in machine coordinates (work offsets, G92 and the XY rotation
 // of G10 L2 R applied), whatever G20/G21 the program uses.
+#include <kontur/axes.hpp>
 #include <kontur/geometry/conic_through_points.hpp>
 #include <kontur/geometry/curve.hpp>
 #include <kontur/geometry/helix_arc.hpp>
@@ -93,6 +94,9 @@ struct Block {
   Geometry geometry;                 ///< the curve from start to end (see curve())
   Vec3 start = Vec3::Zero();         ///< start point [mm], machine coordinates
   Vec3 end = Vec3::Zero();           ///< programmed end point [mm], machine coordinates
+  /// A B C [deg] and U V W [mm] at the start and the end, machine coordinates. They move linearly
+  /// with the distance along the block's path (LinuxCNC's rule), also on arcs and splines.
+  ExtraAxes extra_start{}, extra_end{};
   Feed feed;                         ///< feed of the block (value 0 for rapids and dwells)
   ModalState modal;                  ///< modal state the block runs in
   SourceLocation location;           ///< file, line, column, N number
@@ -106,6 +110,8 @@ struct Block {
 
   /// The block's curve, or nullptr for a dwell.
   [[nodiscard]] const Curve* curve() const noexcept;
+  /// True if any of A B C U V W moves.
+  [[nodiscard]] bool moves_extra_axes() const noexcept { return extra_start != extra_end; }
   /// Length of the path [mm]: exact for lines, arcs and helices, adaptive Gauss-Kronrod on the span
   /// polynomials for NURBS and Beziers, adaptive Gauss-Kronrod for a conic, 0 for a dwell; empty only
   /// for a block without geometry other than a dwell (none at present).

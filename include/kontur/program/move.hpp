@@ -4,6 +4,7 @@
 // the program's path, so that every later stage (segments, setpoints, the checker, the summary)
 // names the move it belongs to without guessing from source lines.
 #include <cstdint>
+#include <kontur/axes.hpp>
 #include <kontur/geometry/curve.hpp>
 #include <limits>
 #include <memory>
@@ -43,12 +44,32 @@ struct Move {
   double naive_cam_tolerance_mm = 0.0;  ///< G64 Q [mm] (0: none given; smoothing keeps the larger of P and Q)
   long source_line = 0;                 ///< line of the program it comes from (a blend: the outgoing block's)
   const char* type = "";                ///< the block's type name ("line", "arc", ...; "blend" for a corner blend)
-  double length_mm = 0.0;               ///< its length as run [mm]
+  /// Its path length as run: the distance the feed applies to and the planner's path parameter runs
+  /// over (LinuxCNC's rule): the tool path's length [mm] when X Y Z move, else the U V W distance
+  /// [mm], else the A B C angle [deg].
+  double length_mm = 0.0;
+  /// A B C [deg] and U V W [mm] at its start and end; they move linearly with the path distance.
+  ExtraAxes extra_start{}, extra_end{};
+  /// True if the tool point stands still (only extra axes move): the curve is a point.
+  bool tool_still = false;
   /// A corner blend: the programmed corner it replaces (checked against its tolerance).
   std::optional<ProgrammedCorner> corner;
   /// A smoothed line: the programmed lines around it (checked against their tolerance).
   std::optional<ProgrammedLines> lines;
 };
+
+/// True if any of A B C U V W moves on `m`.
+[[nodiscard]] inline bool moves_extra_axes(const Move& m) noexcept { return m.extra_start != m.extra_end; }
+
+/// The extra axes at distance `s_mm` along `m` (0 <= s <= length_mm): exactly extra_start at 0 and
+/// extra_end at length_mm.
+[[nodiscard]] ExtraAxes extra_at(const Move& m, double s_mm) noexcept;
+
+/// The path length of a move (Move::length_mm) from its tool path's length [mm] and its extra axes:
+/// the tool path's when it is longer than tolerances::extra_axes_tool_still_mm, else the U V W
+/// distance, else the A B C angle; `tool_still` tells which.
+[[nodiscard]] double path_length(double tool_length_mm, const ExtraAxes& from, const ExtraAxes& to,
+                                 bool& tool_still) noexcept;
 
 /// A move along `curve` at `feed_mm_s` [mm/s] (its length computed; type "curve"; no id), for
 /// callers that make moves without a program.
