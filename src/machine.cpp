@@ -41,6 +41,8 @@ std::string read_text(const std::filesystem::path& file) {
 }
 
 bool is_rotary(char c) { return c == 'A' || c == 'B' || c == 'C'; }
+// The canonical order of the axes, and LinuxCNC 2.7's numbering of [AXIS_n] (X = 0 .. W = 8).
+constexpr const char* kAxisOrder = "XYZABCUVW";
 
 }  // namespace
 
@@ -141,9 +143,9 @@ Machine read_machine_toml(const std::filesystem::path& file) {
       m.axes.clear();  // the file's axes are the machine's axes, all of them
       for (const auto& [axis_key, axis_node] : *axes) {
         const std::string an(axis_key.str());
-        if (an.size() != 1 || std::string("XYZABCxyzabc").find(an[0]) == std::string::npos)
+        if (an.size() != 1 || std::string(kAxisOrder).find(static_cast<char>(std::toupper(static_cast<unsigned char>(an[0])))) == std::string::npos)
           fail(fmt::format("{}:{}", src, axis_node.source().begin.line), "axis-name",
-               fmt::format("axes.{}: an axis is one of X Y Z A B C", an));
+               fmt::format("axes.{}: an axis is one of X Y Z A B C U V W (A B C rotary in deg, the others linear in mm)", an));
         const char c = static_cast<char>(std::toupper(static_cast<unsigned char>(an[0])));
         AxisLimits* a = nullptr;
         for (auto& existing : m.axes)
@@ -176,9 +178,9 @@ Machine read_machine_toml(const std::filesystem::path& file) {
                        k));
     }
   }
-  // TOML tables are unordered: keep the canonical coordinate order X Y Z A B C.
+  // TOML tables are unordered: keep the canonical coordinate order X Y Z A B C U V W.
   std::sort(m.axes.begin(), m.axes.end(), [](const AxisLimits& a, const AxisLimits& b) {
-    return std::string("XYZABC").find(a.name) < std::string("XYZABC").find(b.name);
+    return std::string(kAxisOrder).find(a.name) < std::string(kAxisOrder).find(b.name);
   });
   validate(m);
   return m;
@@ -251,15 +253,25 @@ Machine read_linuxcnc_ini(const std::filesystem::path& file) {
   const double jerk_time = number("KONTUR", "JERK_TIME").value_or(kDefaultJerkTime);
   check_positive(src, "[KONTUR] JERK_TIME [s]", jerk_time);
   m.axes.clear();
+  for (const char c : coords)
+    if (std::string(kAxisOrder).find(c) == std::string::npos)
+      fail(fmt::format("{}:{}", src, get("TRAJ", "COORDINATES")->second), "coordinates",
+           fmt::format("[TRAJ] COORDINATES = {}: '{}' is not an axis (X Y Z A B C U V W)", get("TRAJ", "COORDINATES")->first, c));
+  // An [AXIS_<letter>] section for an axis COORDINATES lacks: the file disagrees with itself.
+  for (const char c : std::string(kAxisOrder))
+    if (ini.count(fmt::format("AXIS_{}", c)) != 0 && coords.find(c) == std::string::npos)
+      fail(src, "coordinates",
+           fmt::format("[AXIS_{}] is given but [TRAJ] COORDINATES = {} has no {}: add {} to COORDINATES or remove the "
+                       "section",
+                       c, coords, c, c));
   for (std::size_t i = 0; i < coords.size(); ++i) {
     const char c = coords[i];
-    if (std::string("XYZABC").find(c) == std::string::npos) continue;  // U V W: not simulated
     bool seen = false;
     for (const auto& a : m.axes) seen = seen || a.name == c;
     if (seen) continue;  // gantries: the first joint of a letter
     // LinuxCNC 2.7 numbers [AXIS_n] by the letter (X = 0 .. C = 5); 2.8+ names [AXIS_X] for the
     // axis and [JOINT_n] for the joints, in coordinate order.
-    const auto letter_index = std::string("XYZABC").find(c);
+    const auto letter_index = std::string(kAxisOrder).find(c);
     std::string sec;
     for (const std::string& cand : {fmt::format("AXIS_{}", c), fmt::format("AXIS_{}", letter_index), fmt::format("JOINT_{}", i)})
       if (ini.count(cand) != 0) {

@@ -122,8 +122,9 @@ bool run_program(const RunOptions& o) {
   std::unique_ptr<RunReportBuilder> builder;
   if (!o.report.empty()) builder = std::make_unique<RunReportBuilder>(pipeline.machine(), pipeline.moves());
   RunResult result;
+  const AxisLayout layout = pipeline.prepare(o.program);
   auto produce = [&](std::ostream& out) {
-    SetpointWriter writer(out, format, pipeline.machine().servo_period_s);
+    SetpointWriter writer(out, format, pipeline.machine().servo_period_s, layout);
     PipelineEvents events;
     events.setpoint = [&](const trajectory::Setpoint& sp) { writer.write(sp); };
     if (builder) events.observer = [&](const verify::SampleMeasure& m) { builder->observe(m); };

@@ -13,7 +13,7 @@ namespace kontur {
 
 /// Limits of one axis.
 struct AxisLimits {
-  char name = 'X';                        ///< axis letter: X Y Z (linear), A B C (rotary)
+  char name = 'X';                        ///< axis letter: X Y Z U V W (linear), A B C (rotary)
   bool rotary = false;                    ///< A B C: units are [deg] instead of [mm]
   double max_velocity = 0.0;              ///< [mm/s] (rotary: [deg/s])
   double max_acceleration = 0.0;          ///< [mm/s^2] (rotary: [deg/s^2])
@@ -43,7 +43,7 @@ struct Machine {
   std::optional<double> arc_radius_tolerance_mm;
   std::optional<double> arc_radius_tolerance_inch;
 
-  /// The limits of axis `name` (X, Y, Z, A, B, C), or nullptr.
+  /// The limits of axis `name` (X Y Z A B C U V W), or nullptr.
   [[nodiscard]] const AxisLimits* axis(char name) const noexcept;
 };
 
@@ -65,10 +65,11 @@ void validate(const Machine& machine);
 /// keep the default machine's values; [axes.*] sections, if any, are all the machine's axes. Throws InputError with file, line and field.
 [[nodiscard]] Machine read_machine_toml(const std::filesystem::path& file);
 /// Reads a LinuxCNC INI file: [TRAJ] COORDINATES, LINEAR_UNITS (mm or inch), MAX_LINEAR_VELOCITY,
-/// MAX_VELOCITY and MAX_ACCELERATION; [EMCMOT] SERVO_PERIOD [ns]; per axis [AXIS_n] (or
-/// [AXIS_X], [JOINT_n]) MAX_VELOCITY, MAX_ACCELERATION, MAX_JERK, MIN_LIMIT, MAX_LIMIT, in the
-/// machine's units per second ([AXIS_n] numbered by the letter, X = 0 .. C = 5, as LinuxCNC 2.7
-/// does). Kontur's own keys in a [KONTUR] section: CHORD_TOLERANCE,
+/// MAX_VELOCITY and MAX_ACCELERATION; [EMCMOT] SERVO_PERIOD [ns]; per axis of COORDINATES (X Y Z
+/// A B C U V W) [AXIS_X] (2.8+), [AXIS_n] (numbered by the letter, X = 0 .. C = 5, U = 6 .. W = 8,
+/// as LinuxCNC 2.7 does) or [JOINT_n] (in coordinate order) MAX_VELOCITY, MAX_ACCELERATION,
+/// MAX_JERK, MIN_LIMIT, MAX_LIMIT, in the machine's units per second (A B C in degrees); an
+/// [AXIS_<letter>] section for a letter COORDINATES lacks is an error. Kontur's own keys in a [KONTUR] section: CHORD_TOLERANCE,
 /// PATH_TOLERANCE [units], JERK_TIME [s] (the jerk of an axis without MAX_JERK is
 /// MAX_ACCELERATION / JERK_TIME; default 0.01 s).
 [[nodiscard]] Machine read_linuxcnc_ini(const std::filesystem::path& file);

@@ -16,6 +16,7 @@
 #include <kontur/trajectory/sampler.hpp>
 #include <kontur/verify/checker.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,10 @@ class Pipeline {
   Pipeline(const Pipeline&) = delete;
   Pipeline& operator=(const Pipeline&) = delete;
 
+  /// The axis layout of `program`'s setpoints, for a sink's header before run(): X Y Z, then the
+  /// machine's A B C U V W that the program moves (found by reading it once, only on a machine
+  /// with such axes). run() uses it (or calls it if not called for the same program).
+  const AxisLayout& prepare(const std::string& program);
   /// Reads, plans and samples `program` (a file path; a program with an error yields no setpoint:
   /// InputError is thrown before the first one), handing every setpoint to events.setpoint.
   RunResult run(const std::string& program, const PipelineEvents& events = {});
@@ -79,6 +84,7 @@ class Pipeline {
   Machine machine_;
   PipelineOptions options_;
   AxisLayout layout_ = AxisLayout::xyz();
+  std::optional<std::string> prepared_for_;  // the program prepare() was called for
   program::ProgramPath path_;
 };
 

@@ -20,14 +20,27 @@ void put(std::ostream& out, T v) {
 
 }  // namespace
 
-SetpointWriter::SetpointWriter(std::ostream& out, SetpointFormat format, double period_s) : out_(&out), format_(format) {
+SetpointWriter::SetpointWriter(std::ostream& out, SetpointFormat format, double period_s, const AxisLayout& layout)
+    : out_(&out), format_(format), axes_(layout.size()) {
+  const bool xyz = layout == AxisLayout::xyz();
   if (format_ == SetpointFormat::csv) {
-    *out_ << "t,x,y,z,v,block\n";
+    std::string header = "t,";
+    for (int i = 0; i < layout.size(); ++i) {
+      header += static_cast<char>(layout.letter(i) - 'A' + 'a');
+      header += ',';
+    }
+    *out_ << header << "v,block\n";
   } else {
     out_->write(setpoint_binary_magic, 8);
-    put<std::uint32_t>(*out_, setpoint_binary_version);
-    put<std::uint32_t>(*out_, 48);
+    put<std::uint32_t>(*out_, xyz ? setpoint_binary_version : setpoint_binary_version_axes);
+    put<std::uint32_t>(*out_, static_cast<std::uint32_t>(8 * (layout.size() + 3)));
     put<double>(*out_, period_s);
+    if (!xyz) {
+      put<std::uint32_t>(*out_, static_cast<std::uint32_t>(layout.size()));
+      std::array<char, 12> letters{};
+      for (int i = 0; i < layout.size(); ++i) letters[static_cast<std::size_t>(i)] = layout.letter(i);
+      out_->write(letters.data(), static_cast<std::streamsize>(letters.size()));
+    }
   }
 }
 
@@ -35,9 +48,7 @@ void SetpointWriter::write(const trajectory::Setpoint& s) {
   ++count_;
   if (format_ == SetpointFormat::binary) {
     put<double>(*out_, s.t_s);
-    put<double>(*out_, s.position[0]);
-    put<double>(*out_, s.position[1]);
-    put<double>(*out_, s.position[2]);
+    for (int i = 0; i < axes_; ++i) put<double>(*out_, s.position[i]);
     put<double>(*out_, s.v_mm_s);
     put<std::int64_t>(*out_, s.source_line);
     return;
@@ -47,8 +58,9 @@ void SetpointWriter::write(const trajectory::Setpoint& s) {
   // rounding of the file (1e-9 mm would show as 8e-9 / T^3 = 8 mm/s^3 at T = 1 ms).
   auto z = [](double v) { return v == 0.0 ? 0.0 : v; };
   fmt::memory_buffer b;
-  fmt::format_to(std::back_inserter(b), "{:.9f},{},{},{},{:.6f},{}\n", z(s.t_s), z(s.position[0]),
-                 z(s.position[1]), z(s.position[2]), z(s.v_mm_s), s.source_line);
+  fmt::format_to(std::back_inserter(b), "{:.9f}", z(s.t_s));
+  for (int i = 0; i < axes_; ++i) fmt::format_to(std::back_inserter(b), ",{}", z(s.position[i]));
+  fmt::format_to(std::back_inserter(b), ",{:.6f},{}\n", z(s.v_mm_s), s.source_line);
   out_->write(b.data(), static_cast<std::streamsize>(b.size()));
 }
 

@@ -1,5 +1,7 @@
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <kontur/error.hpp>
 #include <kontur/io/setpoint_reader.hpp>
@@ -45,7 +47,32 @@ gcode::ReaderOptions Pipeline::reader_options() const {
   return o;
 }
 
+const AxisLayout& Pipeline::prepare(const std::string& program) {
+  // X Y Z, then the machine's extra axes the program moves (a first reading pass, only on a
+  // machine that has extra axes): the setpoint files of X Y Z programs keep their X Y Z columns.
+  std::string letters = "XYZ";
+  bool machine_extra = false;
+  for (const AxisLimits& a : machine_.axes) machine_extra = machine_extra || extra_axis_index(a.name) >= 0;
+  if (machine_extra) {
+    std::array<bool, extra_axis_count> moved{};
+    gcode::for_each_block(
+        program,
+        [&](const gcode::Block& b) {
+          for (std::size_t e = 0; e < moved.size(); ++e) moved[e] = moved[e] || b.extra_start[e] != b.extra_end[e];
+        },
+        reader_options());
+    for (int e = 0; e < extra_axis_count; ++e)
+      if (moved[static_cast<std::size_t>(e)] && machine_.axis(extra_axis_letters[e]) != nullptr)
+        letters += extra_axis_letters[e];
+  }
+  layout_ = AxisLayout::from_letters(letters);
+  prepared_for_ = program;
+  return layout_;
+}
+
 RunResult Pipeline::run(const std::string& program, const PipelineEvents& events) {
+  if (!prepared_for_ || *prepared_for_ != program) prepare(program);
+  prepared_for_.reset();  // the next run reads its program again
   trajectory::Trajectory trajectory;
   plan::MotionPlanner planner(machine_, trajectory);
   trajectory::Sampler sampler(trajectory, machine_.servo_period_s, layout_);
@@ -76,7 +103,10 @@ RunResult Pipeline::run(const std::string& program, const PipelineEvents& events
   result.passed = result.check.passed(machine_);
   report::SummaryExtras extras;
   extras.dialect = path_.dialect();
-  if (options_.time_optimal) extras.time_optimal_s = time_optimal_time(path_.moves(), machine_);
+  // The reference plans the tool path (X Y Z) only: none for a program that moves extra axes.
+  const bool extra = std::any_of(path_.moves().begin(), path_.moves().end(),
+                                 [](const program::Move& m) { return program::moves_extra_axes(m); });
+  if (options_.time_optimal && !extra) extras.time_optimal_s = time_optimal_time(path_.moves(), machine_);
   result.summary_json =
       report::summary_json(program, machine_, result.check, path_.moves(), result.total_time_s, extras);
   return result;
@@ -90,14 +120,25 @@ RunResult Pipeline::verify(const std::string& program, const std::string& setpoi
   if (moves.empty())
     throw InputError("program-no-motion",
                      fmt::format("{}: the program has no move to check setpoints against", program));
-  verify::Checker checker(moves, machine_, layout_, events.observer);
+  // The checker measures in the file's layout, which must have every axis the program moves.
+  std::unique_ptr<verify::Checker> checker;
   RunResult result;
-  // A binary file's period is checked from its header, before any setpoint.
-  auto same_period = [&](double period_s) {
-    if (std::abs(period_s - machine_.servo_period_s) > 1e-12 * machine_.servo_period_s)
+  auto header = [&](const SetpointHeader& h) {
+    // A binary file's period is checked from its header, before any setpoint.
+    if (h.period_s && std::abs(*h.period_s - machine_.servo_period_s) > 1e-12 * machine_.servo_period_s)
       throw InputError("setpoints-period",
                        fmt::format("{}: written at a servo period of {} s, but the machine's is {} s (give --machine)",
-                                   setpoints, period_s, machine_.servo_period_s));
+                                   setpoints, *h.period_s, machine_.servo_period_s));
+    for (const program::Move& m : moves)
+      for (int e = 0; e < extra_axis_count; ++e)
+        if (m.extra_start[static_cast<std::size_t>(e)] != m.extra_end[static_cast<std::size_t>(e)] &&
+            h.layout.index_of(extra_axis_letters[e]) < 0)
+          throw InputError("setpoints-axes",
+                           fmt::format("{}: the program moves {} (line {}), but the file has no column for it (its "
+                                       "axes: {})",
+                                       setpoints, extra_axis_letters[e], m.source_line, h.layout.letters()));
+    layout_ = h.layout;
+    checker = std::make_unique<verify::Checker>(moves, machine_, layout_, events.observer);
   };
   for_each_setpoint(
       setpoints,
@@ -105,12 +146,12 @@ RunResult Pipeline::verify(const std::string& program, const std::string& setpoi
         ++result.setpoints;
         result.total_time_s = s.t_s;
         if (events.setpoint) events.setpoint(s);
-        checker.add(s);
+        checker->add(s);
       },
-      same_period);
+      header);
   if (result.setpoints == 0)
     throw InputError("setpoints-empty", fmt::format("{}: the file holds no setpoint", setpoints));
-  result.check = checker.finish();
+  result.check = checker->finish();
   result.passed = result.check.passed(machine_);
   report::SummaryExtras extras;
   extras.dialect = path_.dialect();

@@ -85,6 +85,7 @@ void PathGeometry::merge(const PathGeometry& o) noexcept {
   curvature = curvature.cwiseMax(o.curvature);
   curvature_rate = curvature_rate.cwiseMax(o.curvature_rate);
   max_kappa = std::max(max_kappa, o.max_kappa);
+  for (std::size_t e = 0; e < extra_rate.size(); ++e) extra_rate[e] = std::max(extra_rate[e], o.extra_rate[e]);
 }
 
 std::pair<Vec3, Vec3> curvature_vector_and_rate(const Derivatives& d) noexcept {
@@ -149,6 +150,9 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples) {
 double speed_cap(const PathGeometry& g, double feed_mm_s, const Machine& machine, double centripetal_share) noexcept {
   const LinearAxes axes = linear_axes(machine);
   double v = velocity_cap(g.tangent, feed_mm_s, machine, axes);
+  for (const AxisLimits& axis : machine.axes)  // the extra axes, linear in the distance
+    if (const int e = extra_axis_index(axis.name); e >= 0 && g.extra_rate[static_cast<std::size_t>(e)] > 0.0)
+      v = std::min(v, axis.max_velocity / g.extra_rate[static_cast<std::size_t>(e)]);
   for (std::size_t i = 0; i < 3; ++i) {
     const AxisLimits* axis = axes[i];
     if (axis == nullptr) continue;  // not moved (else velocity_cap is zero): it bounds nothing
@@ -182,6 +186,16 @@ PathLimits limits_at_cap(const PathGeometry& g, double v, const Machine& machine
     const double j = (1.0 - junction_share) * axis.max_jerk - 3.0 * g.curvature[i] * v * l.max_acceleration -
                      g.curvature_rate[i] * v * v * v;
     l.max_jerk = std::min(l.max_jerk, j / g.tangent[i]);
+  }
+  // The extra axes move linearly with the distance: their acceleration is r_e times the path's,
+  // their jerk r_e times the path's jerk.
+  for (const AxisLimits& axis : machine.axes) {
+    const int e = extra_axis_index(axis.name);
+    if (e < 0) continue;
+    const double r = g.extra_rate[static_cast<std::size_t>(e)];
+    if (!(r > 0.0)) continue;
+    l.max_acceleration = std::min(l.max_acceleration, axis.max_acceleration / r);
+    l.max_jerk = std::min(l.max_jerk, (1.0 - junction_share) * axis.max_jerk / r);
   }
   return l;
 }
@@ -260,6 +274,30 @@ Junction junction(const Derivatives& end_in, const Derivatives& start_out, const
   const double share = corner < tolerances::plan_small_corner ? tolerances::plan_smooth_junction_jerk_share
                                                               : tolerances::plan_corner_jerk_share;
   return {junction_limit(end_in, start_out, machine, share), share};
+}
+
+Junction extra_axes_junction(const ExtraAxes& rate_in, const ExtraAxes& rate_out, const Machine& machine) noexcept {
+  double corner = 0.0;
+  for (std::size_t e = 0; e < rate_in.size(); ++e) corner = std::max(corner, std::abs(rate_out[e] - rate_in[e]));
+  if (corner <= tolerances::plan_junction_smooth) return {kInf, 0.0};
+  const double share = corner < tolerances::plan_small_corner ? tolerances::plan_smooth_junction_jerk_share
+                                                              : tolerances::plan_corner_jerk_share;
+  const double T = machine.servo_period_s;
+  double v = kInf;
+  for (const AxisLimits& axis : machine.axes) {
+    const int e = extra_axis_index(axis.name);
+    if (e < 0) continue;
+    const double jump = std::abs(rate_out[static_cast<std::size_t>(e)] - rate_in[static_cast<std::size_t>(e)]);
+    if (!(jump > tolerances::plan_junction_smooth)) continue;
+    // v |dr| / T^2 <= share J (the jerk of the velocity step) and v |dr| / T <= 0.1 A (its acceleration)
+    v = std::min({v, share * axis.max_jerk * T * T / jump,
+                  tolerances::plan_corner_acceleration_share * axis.max_acceleration * T / jump});
+  }
+  return {v, share};
+}
+
+Junction tighter(const Junction& a, const Junction& b) noexcept {
+  return {std::min(a.velocity, b.velocity), std::max(a.jerk_share, b.jerk_share)};
 }
 
 double curve_speed_cap(const Curve& curve, double feed_mm_s, const Machine& machine) {

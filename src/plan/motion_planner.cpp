@@ -83,15 +83,44 @@ MotionPlanner::MotionPlanner(const Machine& machine, trajectory::Trajectory& out
 
 void MotionPlanner::push(const program::Move& move) {
   out_->reclaim();
-  auto table = std::make_shared<const ArcLengthTable>(*move.curve);
-  const double length = table->length_mm();
-  if (!(length > 0.0)) return;
   const Curve& c = *move.curve;
-  const std::vector<MovePiece> pieces = split_move(c, *table, move.feed_mm_s, machine_);
+  // The tool path's arc-length table; a move of the extra axes alone runs over their distance.
+  std::shared_ptr<const ArcLengthTable> table;
+  std::vector<MovePiece> pieces;
+  double length = 0.0;  // [mm] (or [deg]): the distance s runs over
+  if (move.tool_still) {
+    length = move.length_mm;
+    if (!(length > 0.0)) return;
+    MovePiece p;
+    p.u0 = p.u1 = c.u_min();
+    p.s0_mm = 0.0;
+    p.s1_mm = length;
+    p.end = {std::numeric_limits<double>::infinity(), 0.0};
+    pieces.push_back(p);
+  } else {
+    table = std::make_shared<const ArcLengthTable>(c);
+    length = table->length_mm();
+    if (!(length > 0.0)) return;
+    pieces = split_move(c, *table, move.feed_mm_s, machine_);
+  }
+  // The extra axes' rates dq/ds (signed), constant along the move.
+  ExtraAxes rate{}, rate_bound{};
+  for (std::size_t e = 0; e < rate.size(); ++e) {
+    rate[e] = (move.extra_end[e] - move.extra_start[e]) / length;
+    rate_bound[e] = std::abs(rate[e]);
+  }
+  for (MovePiece& p : pieces) p.geometry.extra_rate = rate_bound;
   // The junction with the move before (still the open chain's last piece unless it stopped).
   Junction in{0.0, 0.0};  // at rest
   if (!open_.pieces.empty()) {
-    in = junction(*last_end_, c.derivatives(c.u_min(), 2), machine_);
+    if (move.tool_still || last_tool_still_) {
+      // The tool point stops where only the extra axes go on (or start): a stop unless both stand.
+      in = move.tool_still && last_tool_still_ ? extra_axes_junction(last_rate_, rate, machine_)
+                                               : Junction{0.0, tolerances::plan_corner_jerk_share};
+    } else {
+      in = tighter(junction(*last_end_, c.derivatives(c.u_min(), 2), machine_),
+                   extra_axes_junction(last_rate_, rate, machine_));
+    }
     settle_last(in.jerk_share);
     if (!in.smooth()) close_chain(in.velocity);  // a corner or a curvature jump: the speed there is limited
   }
@@ -106,6 +135,10 @@ void MotionPlanner::push(const program::Move& move) {
     seg.u1 = p.u1;
     seg.s0_mm = p.s0_mm;
     seg.s1_mm = p.s1_mm;
+    seg.extra_start = move.extra_start;
+    seg.extra_end = move.extra_end;
+    seg.move_length_mm = length;
+    seg.tool_still = move.tool_still;
     seg.move = move.id;
     seg.source_line = move.source_line;
     piece.geometry = p.geometry;
@@ -131,6 +164,8 @@ void MotionPlanner::push(const program::Move& move) {
     }
   }
   last_end_ = c.derivatives_left(c.u_max(), 2);
+  last_rate_ = rate;
+  last_tool_still_ = move.tool_still;
   last_exact_stop_ = move.exact_stop;
   last_move_ = move.id;
   if (move.exact_stop) {

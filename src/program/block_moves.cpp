@@ -40,11 +40,32 @@ Move move_of(const gcode::Block& b, const Machine& machine) {
   m.source_line = b.location.line;
   m.type = gcode::to_string(b.type);
   if (!m.curve) return m;  // no motion (a dwell)
+  // An axis the machine lacks cannot move.
+  for (int e = 0; e < extra_axis_count; ++e) {
+    const auto i = static_cast<std::size_t>(e);
+    if (b.extra_start[i] == b.extra_end[i] || machine.axis(extra_axis_letters[e]) != nullptr) continue;
+    std::string axes;
+    for (const AxisLimits& a : machine.axes) axes += a.name;
+    throw InputError("axis-missing",
+                     fmt::format("{}:{}: the block moves {} (to {}), but the machine {} ({}) has no {} axis (its axes: {})",
+                                 b.location.file ? *b.location.file : std::string("?"), b.location.line,
+                                 extra_axis_letters[e], b.extra_end[i], machine.name, machine.source,
+                                 extra_axis_letters[e], axes));
+  }
   // The length, integrated once (lines and arcs: exact; NURBS and conics: the same quadrature of
   // the same curve as the block's length_mm, of the curve the planner runs).
   const bool exact = std::holds_alternative<LineSegment>(b.geometry) || std::holds_alternative<HelixArc>(b.geometry);
-  const double len = exact ? *b.length_mm() : length(*m.curve);                                     // [mm]
+  const double tool_len = exact ? *b.length_mm() : length(*m.curve);  // [mm]
+  // The path the feed applies to: the tool path, else U V W, else A B C (LinuxCNC's rule).
+  m.extra_start = b.extra_start;
+  m.extra_end = b.extra_end;
+  const double len = path_length(tool_len, b.extra_start, b.extra_end, m.tool_still);  // [mm] or [deg]
+  if (m.tool_still) m.curve = std::make_shared<LineSegment>(b.start, b.start);  // the tool point stands
   double feed = b.type == gcode::BlockType::rapid ? machine.rapid_feed_mm_s : b.feed.value / 60.0;  // [mm/s]
+  // The reader scales F by the program's units; a move of A B C alone runs at F [deg/min].
+  const bool rotary_only = m.tool_still && b.extra_start[3] == b.extra_end[3] && b.extra_start[4] == b.extra_end[4] &&
+                           b.extra_start[5] == b.extra_end[5];
+  if (rotary_only && b.type != gcode::BlockType::rapid && b.modal.units == gcode::Units::inch) feed /= 25.4;
   if (b.feed.mode == gcode::FeedMode::inverse_time && b.type != gcode::BlockType::rapid)
     feed = b.feed.duration_s() > 0.0 ? len / b.feed.duration_s() : machine.max_feed_mm_s;
   if (!(feed > 0.0))

@@ -34,7 +34,8 @@ Move with_line(const Move& m, const Vec3& a, const Vec3& b) {
 }  // namespace
 
 void CornerBlender::push(const Move& move, std::vector<Move>& out) {
-  const auto* line = dynamic_cast<const LineSegment*>(move.curve.get());
+  // A move of extra axes is not blended (its corner stays as programmed).
+  const auto* line = moves_extra_axes(move) ? nullptr : dynamic_cast<const LineSegment*>(move.curve.get());
   if (held_) {
     Held& h = *held_;
     const double tolerance_mm = h.move.corner_tolerance_mm;

@@ -13,7 +13,7 @@ namespace kontur::program {
 namespace {
 
 const LineSegment* feed_line(const Move& m) {
-  if (std::strcmp(m.type, "line") != 0) return nullptr;
+  if (std::strcmp(m.type, "line") != 0 || moves_extra_axes(m)) return nullptr;  // extra axes: as programmed
   return dynamic_cast<const LineSegment*>(m.curve.get());
 }
 

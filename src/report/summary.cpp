@@ -21,6 +21,10 @@ std::string summary_json(const std::string& program, const Machine& machine, con
   j["max_chord_error_mm"] = r.max_chord_error_mm;
   j["chord_tolerance_mm"] = machine.chord_tolerance_mm;
   j["end_error_mm"] = r.end_error_mm;
+  if (r.worst_extra_axis != ' ' || r.max_extra_axis_error > 0.0) {  // only where an extra axis is in the layout
+    j["max_extra_axis_error"] = r.max_extra_axis_error;
+    j["worst_extra_axis"] = std::string(1, r.worst_extra_axis);
+  }
   j["blends"] = r.blends;
   j["max_blend_deviation_mm"] = r.max_blend_deviation_mm;
   j["blend_tolerance_mm"] = r.blend_tolerance_mm;

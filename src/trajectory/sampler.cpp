@@ -3,9 +3,10 @@
 
 namespace kontur::trajectory {
 
-void Sampler::emit(Setpoint& out, double t, const Vec3& p, double v, long line, program::MoveId move) const noexcept {
+void Sampler::emit(Setpoint& out, double t, const Vec3& p, const ExtraAxes& extra, double v, long line,
+                   program::MoveId move) const noexcept {
   out.t_s = t;
-  out.position = layout_.from_tool(p);
+  out.position = layout_.from_tool(p, extra);
   out.v_mm_s = v;
   out.source_line = line;
   out.move = move;
@@ -25,7 +26,7 @@ bool Sampler::next(Setpoint& out) noexcept {
     s_ = m.s0_mm;
     t_move_ = 0.0;
     const bool holding = m.hold_before_s > 0.0;
-    emit(out, 0.0, m.curve->point(u_), holding ? 0.0 : m.start_velocity(),
+    emit(out, 0.0, m.curve->point(u_), m.extra_at(s_), holding ? 0.0 : m.start_velocity(),
          holding ? m.hold_before_line : m.source_line, holding ? m.hold_before_move : m.move);
     return true;
   }
@@ -37,7 +38,8 @@ bool Sampler::next(Setpoint& out) noexcept {
       // The last segment: its end at rest is the last setpoint.
       const Segment& m = tr.segment(current_);
       t_ += period_;
-      emit(out, t_, m.curve->point(m.u1), 0.0, m.hold_after_s > 0.0 ? m.hold_after_line : m.source_line, m.move);
+      emit(out, t_, m.curve->point(m.u1), m.extra_at(m.s1_mm), 0.0,
+           m.hold_after_s > 0.0 ? m.hold_after_line : m.source_line, m.move);
       end_given_ = true;
       return true;
     }
@@ -72,7 +74,7 @@ bool Sampler::next(Setpoint& out) noexcept {
   const double s_target = m.s0_mm + st.s;
   if (st.s >= m.s1_mm - m.s0_mm || s_target >= m.s1_mm) {
     u_ = m.u1;
-  } else if (s_target > s_) {
+  } else if (s_target > s_ && !m.tool_still) {
     // (u_after starts from the Taylor series of u(s) at u_; no hint needed: it falls back to the
     // table interval's linear guess)
     u_ = m.table->u_after(u_, s_, s_target, u_);
@@ -80,7 +82,7 @@ bool Sampler::next(Setpoint& out) noexcept {
   s_ = std::max(s_, s_target);
   t_move_ = t_move;
   t_ += period_;
-  emit(out, t_, m.curve->point(u_), st.v, line, move);
+  emit(out, t_, m.curve->point(u_), m.extra_at(st.s >= m.s1_mm - m.s0_mm ? m.s1_mm : s_), st.v, line, move);
   return true;
 }
 

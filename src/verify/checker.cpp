@@ -246,7 +246,7 @@ bool Report::passed(const Machine& machine) const noexcept {
   return finite && uniform_time && max_velocity_ratio <= 1 + kRelative && max_acceleration_ratio <= 1 + kRelative &&
          max_jerk_ratio <= 1 + kRelative && max_path_error_mm <= 1e-6 &&
          max_chord_error_mm <= machine.chord_tolerance_mm * (1 + kRelative) && start_error_mm <= 1e-9 &&
-         end_error_mm <= 1e-9 && max_blend_deviation_ratio <= 1 + tolerances::blend_deviation_relative &&
+         end_error_mm <= 1e-9 && max_extra_axis_error <= 1e-6 && max_blend_deviation_ratio <= 1 + tolerances::blend_deviation_relative &&
          max_smoothing_deviation_ratio <= 1 + tolerances::smoothing_deviation_relative;
 }
 
@@ -266,6 +266,9 @@ std::vector<std::string> Report::failures(const Machine& machine) const {
                             machine.chord_tolerance_mm));
   if (start_error_mm > 1e-9) f.push_back(fmt::format("the first setpoint is {:.3g} mm from the start", start_error_mm));
   if (end_error_mm > 1e-9) f.push_back(fmt::format("the last setpoint is {:.3g} mm from the end", end_error_mm));
+  if (max_extra_axis_error > 1e-6)
+    f.push_back(fmt::format("axis {} of a setpoint is {:.3g} {} from where its move puts it", worst_extra_axis,
+                            max_extra_axis_error, extra_axis_index(worst_extra_axis) < 3 ? "deg" : "mm"));
   if (max_blend_deviation_ratio > 1 + tolerances::blend_deviation_relative)
     f.push_back(fmt::format("a corner blend is {:.6g} mm from the programmed corner (tolerance {} mm)",
                             max_blend_deviation_mm, blend_tolerance_mm));
@@ -341,6 +344,45 @@ std::size_t Checker::match(const Sample& s, const Vec3& p, double& u, double& d)
   return m;
 }
 
+double Checker::extra_axis_error(const AxisVector& position, std::size_t m, double u, char& axis) {
+  const program::Move& mv = moves_[m];
+  const ExtraAxes x = layout_.extra(position);
+  ExtraAxes want = mv.extra_start;
+  if (program::moves_extra_axes(mv)) {
+    double f = 0.0;  // where along the move, 0 .. 1
+    if (mv.tool_still) {
+      // the nearest point of the straight line between start and end, over the layout's extra axes
+      double num = 0.0, den = 0.0;
+      for (int e = 0; e < extra_axis_count; ++e) {
+        if (layout_.index_of(extra_axis_letters[e]) < 0) continue;
+        const auto i = static_cast<std::size_t>(e);
+        const double d = mv.extra_end[i] - mv.extra_start[i];
+        num += (x[i] - mv.extra_start[i]) * d;
+        den += d * d;
+      }
+      f = den > 0.0 ? std::clamp(num / den, 0.0, 1.0) : 0.0;
+    } else {
+      if (tables_.size() <= m) tables_.resize(m + 1);
+      if (!tables_[m]) tables_[m] = std::make_unique<ArcLengthTable>(*mv.curve);
+      const double len = tables_[m]->length_mm();
+      f = len > 0.0 ? std::clamp(tables_[m]->s_of_u(u) / len, 0.0, 1.0) : 0.0;
+    }
+    for (std::size_t i = 0; i < want.size(); ++i)
+      want[i] = f >= 1.0 ? mv.extra_end[i] : mv.extra_start[i] + f * (mv.extra_end[i] - mv.extra_start[i]);
+  }
+  double worst = 0.0;
+  for (int e = 0; e < extra_axis_count; ++e) {
+    if (layout_.index_of(extra_axis_letters[e]) < 0) continue;
+    const auto i = static_cast<std::size_t>(e);
+    const double err = std::abs(x[i] - want[i]);
+    if (err > worst) {
+      worst = err;
+      axis = extra_axis_letters[e];
+    }
+  }
+  return worst;
+}
+
 void Checker::add(const Sample& s) {
   const std::size_t k = static_cast<std::size_t>(r_.samples++);
   if (!measuring_) return;
@@ -392,6 +434,15 @@ void Checker::add(const Sample& s) {
   const std::size_t m = match(s, p, u, d);
   const Curve& c = *moves_[m].curve;
   r_.max_path_error_mm = std::max(r_.max_path_error_mm, d);
+  if (layout_.has_extra()) {
+    char axis = ' ';
+    const double e = extra_axis_error(s.position, m, u, axis);
+    if (e > r_.max_extra_axis_error) {
+      r_.max_extra_axis_error = e;
+      r_.worst_extra_axis = axis;
+    }
+    last_extra_ = layout_.extra(s.position);
+  }
   if (const auto& pl = moves_[m].lines) {
     // A smoothed line: the distance from the programmed lines around it (the nearest of the
     // tolerances::check_smoothing_lines lines on each side; the true distance is no larger).
@@ -458,6 +509,13 @@ Report Checker::finish() {
   for (std::size_t i = 0; i < moves_.size(); ++i) r.blocks[i].source_line = moves_[i].source_line;
   const Curve& last = *moves_.back().curve;
   r.end_error_mm = (last_point_ - last.point(last.u_max())).norm();
+  if (layout_.has_extra() && r.worst_extra_axis == ' ')  // measured, and exact: name the first
+    for (int e = extra_axis_count - 1; e >= 0; --e)
+      if (layout_.index_of(extra_axis_letters[e]) >= 0) r.worst_extra_axis = extra_axis_letters[e];
+  for (int e = 0; e < extra_axis_count; ++e)  // the extra axes end where the last move puts them
+    if (layout_.index_of(extra_axis_letters[e]) >= 0)
+      r.end_error_mm = std::max(r.end_error_mm, std::abs(last_extra_[static_cast<std::size_t>(e)] -
+                                                         moves_.back().extra_end[static_cast<std::size_t>(e)]));
   // Corner blends: each within the tolerance of the programmed lines it replaces.
   for (const program::Move& pm : moves_) {
     if (pm.lines) ++r.smoothed_lines;

@@ -9,19 +9,23 @@
 
 namespace kontur {
 
-/// Binary format: header "KONTURSP" (8 bytes), u32 version = 1, u32 record size = 48,
-/// f64 servo period [s]; then one record per setpoint: f64 t [s], f64 x, y, z [mm],
-/// f64 v [mm/s], i64 source line. All little-endian IEEE 754.
+/// Binary format: header "KONTURSP" (8 bytes), u32 version, u32 record size, f64 servo period [s];
+/// version 1 (X Y Z layouts): records of 48 bytes, f64 t [s], f64 x, y, z [mm], f64 v [mm/s],
+/// i64 source line. Version 2 (any other layout): after the period, u32 axis count n and 12 bytes
+/// of axis letters (upper case, in order, zero-padded); records of 8 (n + 3) bytes: f64 t [s], n
+/// f64 positions [mm] or [deg], f64 v [mm/s], i64 source line. All little-endian IEEE 754.
 inline constexpr char setpoint_binary_magic[9] = "KONTURSP";
 inline constexpr std::uint32_t setpoint_binary_version = 1;
+inline constexpr std::uint32_t setpoint_binary_version_axes = 2;
 
 /// Output format of setpoints.
 enum class SetpointFormat { csv, binary };
 
-/// Writes setpoints (positions in the X Y Z layout) to a stream in one of the formats. write() never allocates.
+/// Writes setpoints to a stream in one of the formats, one column per axis of the layout (CSV:
+/// `t,x,y,z,v,block` for X Y Z, `t,x,y,z,a,v,block` with an A axis, ...). write() never allocates.
 class SetpointWriter {
 public:
-  SetpointWriter(std::ostream& out, SetpointFormat format, double period_s);
+  SetpointWriter(std::ostream& out, SetpointFormat format, double period_s, const AxisLayout& layout = AxisLayout::xyz());
   /// Writes one setpoint; in CSV, positions [mm] in the shortest form that reads back exactly, t [s]
   /// with 9 decimals, v [mm/s] with 6.
   void write(const trajectory::Setpoint& s);
@@ -31,6 +35,7 @@ public:
 private:
   std::ostream* out_;
   SetpointFormat format_;
+  int axes_ = 3;
   long count_ = 0;
 };
 

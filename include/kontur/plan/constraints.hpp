@@ -11,6 +11,7 @@
 // InputError "missing-axis", as it refuses every path it cannot run). An axis the machine lacks
 // and the path does not move along bounds nothing: its curvature, curvature change and corner
 // jumps are not looked at. Rotary axes do not carry the path.
+#include <kontur/axes.hpp>
 #include <kontur/geometry/curve.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/plan/scurve.hpp>
@@ -79,6 +80,9 @@ struct PathGeometry {
   Vec3 curvature = Vec3::Zero();       ///< max |K_i| of the curvature vector K = kappa n [1/mm]
   Vec3 curvature_rate = Vec3::Zero();  ///< max |dK_i/ds| along the path [1/mm^2]
   double max_kappa = 0.0;              ///< largest curvature [1/mm] (for the chord error)
+  /// |dq_e/ds| of each extra axis A B C [deg/mm] U V W [mm/mm] (they move linearly with the path
+  /// distance: no curvature terms); ExtraAxes order.
+  ExtraAxes extra_rate{};
   /// The bounds of both stretches.
   void merge(const PathGeometry& other) noexcept;
 };
@@ -150,5 +154,13 @@ struct Junction {
 /// corner, plan_smooth_junction_jerk_share for a small corner or a curvature jump only.
 [[nodiscard]] Junction junction(const Derivatives& end_in, const Derivatives& start_out,
                                 const Machine& machine) noexcept;
+/// The junction as the extra axes see it: their rates dq_e/ds (signed, ExtraAxes order) before and
+/// after. A jump of a rate is a velocity jump v |dr_e| of that axis within one period, limited as
+/// the tangent jump of a linear axis is (junction_limit's rule without the curvature term); equal
+/// rates (to plan_junction_smooth) are smooth.
+[[nodiscard]] Junction extra_axes_junction(const ExtraAxes& rate_in, const ExtraAxes& rate_out,
+                                           const Machine& machine) noexcept;
+/// The tighter of two junction limits (the smaller speed, the larger jerk share).
+[[nodiscard]] Junction tighter(const Junction& a, const Junction& b) noexcept;
 
 }  // namespace kontur::plan

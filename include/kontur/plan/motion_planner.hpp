@@ -38,7 +38,8 @@ class MotionPlanner {
   MotionPlanner(const Machine& machine, trajectory::Trajectory& out);
 
   /// Appends a move (planning: computes its table, pieces and limits; allocates). A move of zero
-  /// length is skipped. Frees the segments the sampler has passed (Trajectory::reclaim).
+  /// length is skipped. The extra axes move linearly with the distance and keep their own limits;
+  /// a move of the extra axes alone (Move::tool_still) runs over their distance. Frees the segments the sampler has passed (Trajectory::reclaim).
   void push(const program::Move& move);
   /// A dwell (G4): the motion stops at the end of the moves so far and stays there `seconds` [s].
   void dwell(double seconds, long source_line);
@@ -81,6 +82,8 @@ class MotionPlanner {
   std::deque<Chain> pending_;            // closed chains in the look-ahead window, in order
   Chain open_;                           // the chain being built (its last piece's end not yet known)
   std::optional<Derivatives> last_end_;  // end of the last move pushed (for the junction)
+  ExtraAxes last_rate_{};                // its extra axes' rates dq/ds (signed)
+  bool last_tool_still_ = false;         // only its extra axes moved
   bool last_exact_stop_ = true;          // the last move pushed ends at rest
   double initial_hold_s_ = 0.0;          // dwell before the next move, with nothing pending [s]
   long initial_hold_line_ = 0;

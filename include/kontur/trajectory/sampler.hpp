@@ -35,7 +35,8 @@ class Sampler {
   [[nodiscard]] const AxisLayout& layout() const noexcept { return layout_; }
 
  private:
-  void emit(Setpoint& out, double t, const Vec3& p, double v, long line, program::MoveId move) const noexcept;
+  void emit(Setpoint& out, double t, const Vec3& p, const ExtraAxes& extra, double v, long line,
+            program::MoveId move) const noexcept;
 
   Trajectory* trajectory_;
   double period_;

@@ -21,6 +21,21 @@ struct Segment {
   std::shared_ptr<const ArcLengthTable> table;  ///< its arc-length table (s(u), u(s))
   double u0 = 0.0, u1 = 0.0;                    ///< parameter range of the piece
   double s0_mm = 0.0, s1_mm = 0.0;              ///< arc-length range of the piece on the curve [mm]
+  /// The extra axes A B C [deg] U V W [mm] at the move's start and end, and the move's path length
+  /// [mm] (or [deg]): they move linearly with the distance along the move (program::extra_at).
+  ExtraAxes extra_start{}, extra_end{};
+  double move_length_mm = 0.0;
+  /// The tool point stands (only extra axes move): s runs over the extra axes' distance, u stays.
+  bool tool_still = false;
+  /// The extra axes at distance `s_mm` along the move: exactly extra_start at 0 and extra_end at the end.
+  [[nodiscard]] ExtraAxes extra_at(double s_mm) const noexcept {
+    if (!(s_mm > 0.0) || !(move_length_mm > 0.0)) return extra_start;
+    if (s_mm >= move_length_mm) return extra_end;
+    const double f = s_mm / move_length_mm;
+    ExtraAxes x;
+    for (std::size_t i = 0; i < x.size(); ++i) x[i] = extra_start[i] + f * (extra_end[i] - extra_start[i]);
+    return x;
+  }
   program::MoveId move = program::no_move;      ///< the move it belongs to
   long source_line = 0;                         ///< that move's line
   double hold_before_s = 0.0;                   ///< dwell before the motion (a dwell ahead of the first move) [s]

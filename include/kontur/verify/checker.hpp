@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <functional>
 #include <kontur/axes.hpp>
+#include <kontur/geometry/length.hpp>
 #include <kontur/geometry/curve.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/program/move.hpp>
@@ -69,6 +70,11 @@ struct Report {
   double max_chord_error_mm = 0.0;         ///< largest distance of the path from a cycle's chord [mm]
   double start_error_mm = 0.0;             ///< distance of the first setpoint from the path's start [mm]
   double end_error_mm = 0.0;               ///< distance of the last setpoint from the path's end [mm]
+  /// Largest distance of an extra axis (A B C [deg], U V W [mm]) of a setpoint from where its move
+  /// puts it (linear in the distance along the move; as programmed at the start and end) [mm] or
+  /// [deg]; 0 for X Y Z layouts.
+  double max_extra_axis_error = 0.0;
+  char worst_extra_axis = ' ';  ///< the axis of max_extra_axis_error
   long blends = 0;                         ///< corner blends among the moves
   double max_blend_deviation_mm = 0.0;     ///< largest distance of a blend from its programmed corner's lines [mm]
   double blend_tolerance_mm = 0.0;         ///< the tolerance of the blend with the largest deviation / tolerance [mm]
@@ -129,7 +135,12 @@ class Checker {
     double max_v = 0.0, max_a = 0.0, max_j = 0.0;
   };
   [[nodiscard]] const std::vector<double>& spans_of(std::size_t move);
+  std::vector<std::unique_ptr<ArcLengthTable>> tables_;  // per move with extra axes (distance of u)
+  ExtraAxes last_extra_{};                               // extra axes of the last setpoint
   [[nodiscard]] std::size_t match(const Sample& s, const Vec3& p, double& u, double& d);
+  // The largest distance of the setpoint's extra axes from where move m puts them at u (or, on a
+  // move of the extra axes alone, from the straight line between its start and end); sets `axis`.
+  [[nodiscard]] double extra_axis_error(const AxisVector& position, std::size_t m, double u, char& axis);
   // The nearest point of the whole path to p, if nearer than d: updates m, u, d.
   void nearest_on_path(const Vec3& p, std::size_t& m, double& u, double& d);
 
