@@ -120,7 +120,7 @@ bool run_program(const RunOptions& o) {
   options.time_optimal = o.time_optimal;
   Pipeline pipeline(std::move(machine), options);
   std::unique_ptr<RunReportBuilder> builder;
-  if (!o.report.empty()) builder = std::make_unique<RunReportBuilder>(pipeline.machine(), pipeline.moves());
+  if (!o.report.empty()) builder = std::make_unique<RunReportBuilder>(pipeline.machine(), pipeline.moves(), pipeline.layout());
   RunResult result;
   const AxisLayout layout = pipeline.prepare(o.program);
   auto produce = [&](std::ostream& out) {

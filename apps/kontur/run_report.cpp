@@ -68,9 +68,11 @@ std::string sci(double v) { return v == 0.0 ? std::string("0") : fmt::format("{:
 
 }  // namespace
 
-RunReportBuilder::RunReportBuilder(const Machine& machine, const std::vector<program::Move>& moves)
+RunReportBuilder::RunReportBuilder(const Machine& machine, const std::vector<program::Move>& moves,
+                                   const AxisLayout& layout)
     : machine_(machine),
       moves_(moves),
+      layout_(layout),
       path_(4, kBuckets),
       speed_(2, kBuckets),
       velocity_(3, kBuckets),
@@ -98,6 +100,24 @@ void RunReportBuilder::observe(const verify::SampleMeasure& s) {
   velocity_.add(s.t_s, std::span<const double>(s.velocity.data(), 3));
   acceleration_.add(s.t_s, std::span<const double>(s.acceleration.data(), 3));
   jerk_.add(s.t_s, std::span<const double>(s.jerk.data(), 3));
+  if (s.index == 0) {  // the layout is known once the setpoints come
+    extra_letters_.clear();
+    for (int i = 0; i < layout_.size(); ++i)
+      if (extra_axis_index(layout_.letter(i)) >= 0) {
+        extra_index_[extra_letters_.size()] = i;
+        extra_letters_ += layout_.letter(i);
+      }
+    for (auto& d : extra_)
+      d = extra_letters_.empty() ? nullptr : std::make_unique<report::StreamDecimator>(extra_letters_.size(), kBuckets);
+  }
+  if (!extra_letters_.empty()) {
+    const AxisVector* q[4] = {&s.position, &s.velocity, &s.acceleration, &s.jerk};
+    std::array<double, max_axes> v{};
+    for (std::size_t k = 0; k < 4; ++k) {
+      for (std::size_t e = 0; e < extra_letters_.size(); ++e) v[e] = (*q[k])[extra_index_[e]];
+      extra_[k]->add(s.t_s, std::span<const double>(v.data(), extra_letters_.size()));
+    }
+  }
   const double e[2] = {s.chord_error_mm, s.path_error_mm};
   error_.add(s.t_s, e);
 }
@@ -127,6 +147,10 @@ report::Report RunReportBuilder::build(const verify::Report& r, double total_s, 
   sum.push_back({"max chord error",
                  fmt::format("{} mm (tolerance {} mm)", sci(r.max_chord_error_mm), num(machine_.chord_tolerance_mm))});
   sum.push_back({"start / end error", fmt::format("{} / {} mm", sci(r.start_error_mm), sci(r.end_error_mm))});
+  if (r.worst_extra_axis != ' ')
+    sum.push_back({"max extra axis error (limit 1e-6)",
+                   fmt::format("{} {} (axis {})", sci(r.max_extra_axis_error),
+                               extra_axis_index(r.worst_extra_axis) < 3 ? "deg" : "mm", r.worst_extra_axis)});
 
   // The path coloured by path speed, and the start of every block.
   {
@@ -178,6 +202,38 @@ report::Report RunReportBuilder::build(const verify::Report& r, double total_s, 
                                 axis_limit_lines(machine_, &AxisLimits::max_acceleration, "max acceleration")));
   rep.plots.push_back(axis_plot(jerk_, "Axis jerk over time (third differences)", "j [mm/s^3]",
                                 axis_limit_lines(machine_, &AxisLimits::max_jerk, "max jerk")));
+  if (!extra_letters_.empty() && extra_[0]) {
+    // The extra axes: A B C in [deg], U V W in [mm]; their limits as dashed lines.
+    static const char* colors[] = {"#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf", "#bcbd22"};
+    const char* what[4] = {"position", "velocity", "acceleration", "jerk"};
+    const char* unit[4] = {"", "/s", "/s^2", "/s^3"};
+    double AxisLimits::*field[4] = {nullptr, &AxisLimits::max_velocity, &AxisLimits::max_acceleration,
+                                    &AxisLimits::max_jerk};
+    for (std::size_t q = 0; q < 4; ++q) {
+      const auto k = extra_[q]->kept();
+      report::Plot p;
+      p.title = fmt::format("Extra axes {} over time{}", what[q], q == 0 ? "" : " (backward differences)");
+      p.x_label = "t [s]";
+      p.y_label = fmt::format("[deg{}] (A B C), [mm{}] (U V W)", unit[q], unit[q]);
+      for (std::size_t e = 0; e < extra_letters_.size(); ++e) {
+        const char c = extra_letters_[e];
+        report::Series sr;
+        sr.name = std::string(1, static_cast<char>(c - 'A' + 'a'));
+        sr.color = colors[extra_axis_index(c)];
+        sr.x = k.x;
+        sr.y = channel(k, extra_letters_.size(), e);
+        sr.source_points = extra_[q]->count();
+        p.series.push_back(std::move(sr));
+        if (field[q] != nullptr)
+          if (const AxisLimits* ax = machine_.axis(c)) {
+            const double lim = ax->*field[q];
+            p.limits.push_back({fmt::format("+max {} {} ({})", what[q], c, num(lim)), lim, colors[extra_axis_index(c)]});
+            p.limits.push_back({fmt::format("-max {} {}", what[q], c), -lim, colors[extra_axis_index(c)]});
+          }
+      }
+      rep.plots.push_back(std::move(p));
+    }
+  }
   {
     const auto k = error_.kept();
     report::Plot p;

@@ -46,7 +46,7 @@ bool verify_setpoints(const VerifyOptions& o) {
   options.reader = reader_options(o.read, o.program, &machine, true);
   Pipeline pipeline(std::move(machine), options);
   std::unique_ptr<RunReportBuilder> builder;
-  if (!o.report.empty()) builder = std::make_unique<RunReportBuilder>(pipeline.machine(), pipeline.moves());
+  if (!o.report.empty()) builder = std::make_unique<RunReportBuilder>(pipeline.machine(), pipeline.moves(), pipeline.layout());
   PipelineEvents events;
   if (builder) events.observer = [&](const verify::SampleMeasure& m) { builder->observe(m); };
   const RunResult result = pipeline.verify(o.program, o.setpoints, events);

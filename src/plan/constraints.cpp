@@ -149,7 +149,10 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples) {
 
 double speed_cap(const PathGeometry& g, double feed_mm_s, const Machine& machine, double centripetal_share) noexcept {
   const LinearAxes axes = linear_axes(machine);
-  double v = velocity_cap(g.tangent, feed_mm_s, machine, axes);
+  // A move of extra axes alone (the tool point stands) runs at its feed [deg/s] or [mm/s] within the
+  // axes' own velocities: the machine's max feed is a tool path speed.
+  const bool tool_still = g.tangent.isZero();
+  double v = tool_still ? feed_mm_s : velocity_cap(g.tangent, feed_mm_s, machine, axes);
   for (const AxisLimits& axis : machine.axes)  // the extra axes, linear in the distance
     if (const int e = extra_axis_index(axis.name); e >= 0 && g.extra_rate[static_cast<std::size_t>(e)] > 0.0)
       v = std::min(v, axis.max_velocity / g.extra_rate[static_cast<std::size_t>(e)]);
