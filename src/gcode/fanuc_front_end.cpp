@@ -561,6 +561,14 @@ void FanucFrontEnd::dialect_codes(Words& w) {
       break;
     }
   }
+  // U V W: on the Fanuc family's lathes the incremental X Y Z (U-4.6 is X 4.6 less); its mills have
+  // A B C as their 4th and 5th axes (read), and no U V W axes. (G65's U V W are arguments.)
+  if (action != Action::g65)
+    for (const char c : {'U', 'V', 'W'})
+      if (w.has(c))
+        refuse(w.col(c), fmt::format("{}{}", c, num(w.get(c))),
+               "a lathe's incremental X Y Z (U V W): lathe programs (X as a diameter, feed per revolution) are not "
+               "supported; A B C are the rotary axes of a mill");
   switch (action) {
     case Action::none:
       return;

@@ -16,6 +16,7 @@ void Executor::programmable_frame() {
   const FrameOp op = w->frame_op;
   const std::string word = names[static_cast<int>(op)];
   const int col = w->frame_column > 0 ? w->frame_column : block_column();
+  refuse_extra_words(word, "in a frame instruction: TRANS, ROT, SCALE and MIRROR act on X Y Z");
   for (char c = 'A'; c <= 'Z'; ++c)
     if (w->has(c) && c != 'X' && c != 'Y' && c != 'Z')
       fail(w->col(c), "frame-words",
@@ -123,6 +124,7 @@ void Executor::define_pole() {
          fmt::format(
              "{} with AP= / RP=: a pole given in polar coordinates is not supported by Kontur (dialect sinumerik)",
              word));
+  refuse_extra_words(word, "in a pole definition (the pole lies in the plane)");
   if (w->g_count > 1 || w->m_count > 0 || w->keyword != Keyword::none)
     fail(col, "pole", fmt::format("{}: a pole is defined in a block of its own", word));
   const PlaneAxes pa = plane_axes(modal.plane);
