@@ -147,6 +147,20 @@ TEST(GcodeExtraAxes, FanucAndHaasMillProgramsTurnA) {
   expect_extra(h[0].extra_end, xa(0, 30));
 }
 
+TEST(GcodeExtraAxes, FanucAngleWithoutADecimalPointWarnsInDegrees) {
+  ReaderOptions options;
+  options.dialect = Dialect::fanuc;
+  Reader reader("w.nc", "%\nO1\nG90 G21\nG0 X1. A90\nM30\n%\n", options);
+  Block b;
+  while (reader.next(b)) {
+  }
+  ASSERT_EQ(reader.warnings().size(), 1u);
+  EXPECT_NE(reader.warnings()[0].find("A90: written without a decimal point, read as 90 deg; a fanuc with parameter "
+                                      "3401#0 DPI=0 reads it as 90 least increments (0.09 deg)"),
+            std::string::npos)
+      << reader.warnings()[0];
+}
+
 TEST(GcodeExtraAxes, SinumerikAxisWords) {
   const auto b = read("G90 G17 F500\nG1 X10 A=90 C=IC(10)\nG0 U5\nM30\n", Dialect::sinumerik, "axes.mpf");
   ASSERT_EQ(b.size(), 2u);

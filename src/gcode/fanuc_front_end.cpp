@@ -548,16 +548,18 @@ void FanucFrontEnd::dialect_codes(Words& w) {
   }
   // the decimal point: whole units, as Haas and Mach3 read them; a Fanuc with DPI=0 would not
   if (!decimal_warned && (dialect_ == Dialect::fanuc || dialect_ == Dialect::mitsubishi) && action != Action::g65) {
-    for (const char c : {'X', 'Y', 'Z', 'I', 'J', 'K', 'R', 'Q'}) {
+    for (const char c : {'X', 'Y', 'Z', 'A', 'B', 'C', 'I', 'J', 'K', 'R', 'Q'}) {
       if (!w.has(c) || !(integer_literal >> (c - 'A') & 1u) || w.get(c) == 0.0) continue;
       if (c == 'K' && (cycle_block || (state && is_canned_cycle(state->modal_state().motion_g10)))) continue;
       decimal_warned = true;
       const double v = w.get(c);
+      const bool angle = c == 'A' || c == 'B' || c == 'C';  // rotary axes: degrees, increments of 0.001 deg
+      const char* unit = angle ? "deg" : units() == 1.0 ? "mm" : "inch";
       diag.warn(w.col(c),
                 fmt::format("{}{}: written without a decimal point, read as {} {}; a {} with parameter 3401#0 "
                             "DPI=0 reads it as {} least increments ({} {}) (warned once)",
-                            c, num(v), num(v), units() == 1.0 ? "mm" : "inch", d, num(v),
-                            num(v * (units() == 1.0 ? 0.001 : 0.0001)), units() == 1.0 ? "mm" : "inch"));
+                            c, num(v), num(v), unit, d, num(v),
+                            num(v * (angle || units() == 1.0 ? 0.001 : 0.0001)), unit));
       break;
     }
   }
