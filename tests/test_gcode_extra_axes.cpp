@@ -123,6 +123,27 @@ TEST(GcodeExtraAxes, G28GoesThroughTheIntermediatePointHomeAndG53) {
   expect_extra(b[4].extra_end, xa(-5, 0, 0, 0, 0, 2));
 }
 
+TEST(GcodeExtraAxes, WorkSystemsSwitchAndG53IgnoresThem) {
+  // G55's C offset 100; G53 C5 is machine C5 whatever the work system; G91 G28 C0 (Fanuc's way)
+  // homes C through the current point
+  const auto b = read("G90 F600\nG10 L2 P2 C100 U-1\nG55 G1 C10 U1\nG53 G0 C5\nG1 C20\nG54 G1 C20\n"
+                      "G91 G28 C0\nG90\nM2\n");
+  ASSERT_EQ(b.size(), 6u);
+  expect_extra(b[0].extra_end, xa(0, 0, 110, 0));  // U: program 1, offset -1, machine 0
+  expect_extra(b[1].extra_end, xa(0, 0, 5, 0));
+  expect_extra(b[2].extra_end, xa(0, 0, 120, 0));
+  expect_extra(b[3].extra_end, xa(0, 0, 20, 0));
+  expect_extra(b[4].extra_end, xa(0, 0, 20, 0));  // the intermediate point: G91 C0, no motion
+  expect_extra(b[5].extra_end, xa(0));            // home (#5166 = 0)
+}
+
+TEST(GcodeExtraAxes, InverseTimeMoveOfAnExtraAxisAlone) {
+  const auto b = read("G93\nG1 A90 F2\nG94\nM2\n");
+  ASSERT_EQ(b.size(), 1u);
+  EXPECT_DOUBLE_EQ(b[0].feed.duration_s(), 30.0);
+  expect_extra(b[0].extra_end, xa(90));
+}
+
 TEST(GcodeExtraAxes, DwellsAndCyclesKeepThemStill) {
   const auto b = read("G90 G17 F600\nG1 A30\nG4 P1\nG81 X1 Y1 Z-1 R1\nG80\nM2\n");
   ASSERT_GE(b.size(), 3u);
