@@ -189,6 +189,18 @@ TEST(GcodeExtraAxes, SinumerikAxisWords) {
   expect_extra(b[1].extra_end, xa(90, 0, 10, 5));
 }
 
+TEST(GcodeExtraAxes, SinumerikTransShiftsThemAndRotLeavesThem) {
+  const auto b = read("G90 G17 G71 F500\nTRANS X1 A10 W2\nG1 A0 W0\nATRANS A5\nG1 A0\nROT RPL=90\nG1 A0\n"
+                      "TRANS\nG1 A1\nM30\n",
+                      Dialect::sinumerik, "trans.mpf");
+  ASSERT_EQ(b.size(), 4u);
+  expect_extra(b[0].extra_end, xa(10, 0, 0, 0, 0, 2));
+  expect_extra(b[1].extra_end, xa(15, 0, 0, 0, 0, 2));
+  // ROT (absolute) replaces the whole frame, TRANS A10 W2 too (W stays where it is: machine 2)
+  expect_extra(b[2].extra_end, xa(0, 0, 0, 0, 0, 2));
+  expect_extra(b[3].extra_end, xa(1, 0, 0, 0, 0, 2));
+}
+
 TEST(GcodeExtraAxes, GrblAndMach3TurnA) {
   const auto g = read("G21 G90\nG1 X1 A10 F100\n", Dialect::grbl, "axes.nc");
   ASSERT_EQ(g.size(), 1u);
@@ -218,7 +230,8 @@ TEST(GcodeExtraAxes, RefusedWhereTheyCannotMove) {
   EXPECT_NE(error_of("%\nO1\nG1 F100\nG02.4 X5 Y5 Z0 A1\nX10 Y0 Z0\nM30\n%\n", Dialect::fanuc)
                 .find(":4:16: G02.4 A1: extra axes (A B C U V W) are not supported in a circle or conic"),
             std::string::npos);
-  EXPECT_NE(error_of("TRANS X1 A10\nM30\n", Dialect::sinumerik, "frame.mpf").find("TRANS A10: extra axes"),
+  EXPECT_NE(error_of("ROT Z90 A10\nM30\n", Dialect::sinumerik, "frame.mpf")
+                .find("frame.mpf:1:9: ROT A10: extra axes (A B C U V W) are not supported in a frame instruction"),
             std::string::npos);
   // Sinumerik's modulo positioning of a rotary axis
   EXPECT_NE(error_of("G0 A=DC(90)\nM30\n", Dialect::sinumerik, "dc.mpf").find(":1:4: A=DC(..): positioning a rotary axis"),

@@ -4,8 +4,9 @@
 // (with the copy G92.3 restores), and the programmable frame of Sinumerik's TRANS / ROT / MIRROR
 // (A p + t, A invertible: rotations, mirrors, scales; identity elsewhere). machine = Rz(R) (A program + t + G92) + work
 // offset, as LinuxCNC without a programmable frame. The extra axes A B C [deg] and U V W [mm] have
-// a work offset and a G92 offset each and nothing else: machine = program + G92 + work offset (the
-// rotation and the programmable frame act on X Y Z). Dialect-neutral; lengths in [mm].
+// a work offset, a G92 offset and the programmable frame's translation (TRANS / ATRANS) each:
+// machine = program + frame translation + G92 + work offset (rotations, scales and mirrors act on
+// X Y Z). Dialect-neutral; lengths in [mm].
 #include <kontur/axes.hpp>
 #include <kontur/geometry/curve.hpp>
 
@@ -97,15 +98,20 @@ public:
   /// Program positions `p` of the extra axes in machine coordinates, in work system `system`.
   [[nodiscard]] ExtraAxes extra_to_machine(const ExtraAxes& p, int system) const noexcept {
     ExtraAxes m{};
-    for (std::size_t i = 0; i < m.size(); ++i) m[i] = p[i] + extra_g92_[i] + extra_offset_[index(system)][i];
+    for (std::size_t i = 0; i < m.size(); ++i)
+      m[i] = p[i] + extra_frame_[i] + extra_g92_[i] + extra_offset_[index(system)][i];
     return m;
   }
   /// Machine positions `m` of the extra axes in program coordinates, in work system `system`.
   [[nodiscard]] ExtraAxes extra_to_program(const ExtraAxes& m, int system) const noexcept {
     ExtraAxes p{};
-    for (std::size_t i = 0; i < p.size(); ++i) p[i] = m[i] - extra_offset_[index(system)][i] - extra_g92_[i];
+    for (std::size_t i = 0; i < p.size(); ++i)
+      p[i] = m[i] - extra_offset_[index(system)][i] - extra_g92_[i] - extra_frame_[i];
     return p;
   }
+  /// The programmable frame's translation of the extra axes (Sinumerik TRANS / ATRANS A.. W..).
+  [[nodiscard]] const ExtraAxes& programmable_extra() const noexcept { return extra_frame_; }
+  void set_programmable_extra(const ExtraAxes& t) noexcept { extra_frame_ = t; }
   /// Sets extra axis `axis` (0 A .. 5 W) of the offset of work system `system` (G10 L2).
   void set_extra_offset(int system, int axis, double v) noexcept {
     extra_offset_[index(system)][static_cast<std::size_t>(axis)] = v;
@@ -131,6 +137,7 @@ private:
   Vec3 g92_saved_ = Vec3::Zero();
   std::array<ExtraAxes, system_count + 1> extra_offset_{};  // [1..9] G54..G59.3
   ExtraAxes extra_g92_{};
+  ExtraAxes extra_frame_{};
   ExtraAxes extra_g92_saved_{};
   Eigen::Matrix3d frame_linear_ = Eigen::Matrix3d::Identity();
   Eigen::Matrix3d frame_inverse_ = Eigen::Matrix3d::Identity();
