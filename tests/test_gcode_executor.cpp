@@ -126,9 +126,10 @@ TEST(GcodeExecutor, ReportsLikeAControlAlarm) {
   EXPECT_EQ(error_of(g(10, {{'X', 1.0}})), "exec.ngc:5:1: G1: feed rate is zero (no F given before the first feed move)");
   EXPECT_EQ(error_of(g(330)), "exec.ngc:5:1: G33: spindle-synchronised motion (G33 threading, G33.1 rigid tapping) "
                               "is not supported by Kontur");
-  Words a_axis = g(0, {{'A', 3.0}});
-  EXPECT_EQ(error_of(a_axis),
-            "exec.ngc:5:8: A3: rotary and extra axes (A B C U V W) are not supported: Kontur interpolates X Y Z");
+  Words a_in_cycle = g(810, {{'X', 1.0}, {'Z', -1.0}, {'R', 1.0}, {'F', 100.0}, {'A', 3.0}});
+  EXPECT_EQ(error_of(a_in_cycle),
+            "exec.ngc:5:24: G81 A3: extra axes (A B C U V W) are not supported in a canned cycle (LinuxCNC moves them "
+            "before the first hole; move them in a block of their own)");
 }
 
 TEST(GcodeModalGroups, TablesSortCodesIntoTheirGroups) {

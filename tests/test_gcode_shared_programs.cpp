@@ -19,9 +19,6 @@ const std::filesystem::path data_dir = std::filesystem::path(KONTUR_SHARED_DIR) 
 const std::map<std::string, std::string>& expected_errors() {
   static const std::map<std::string, std::string> m = {
       {"linuxcnc-nurbs/G5_Curva_Stella_n1-1_G5.ngc", ":12:1: G2.2: unknown G code"},
-      {"linuxcnc-tp/diagnostic/abc_tangent.ngc", "A0: rotary and extra axes (A B C U V W) are not supported"},
-      {"linuxcnc-tp/violation_checks/machinekit_412.ngc", ":5:6: A881.308: rotary and extra axes"},
-      {"linuxcnc-tp/violation_checks/tkalcevic_realtime_error.ngc", ":4:6: A881.34: rotary and extra axes"},
       {"linuxcnc-tp/diagnostic/bad_spirals_1.ngc", ":14:1: G3: radius to the start 12.7 mm and to the end 28.3981 mm"},
       {"linuxcnc-tp/diagnostic/bad_spirals_lathe.ngc", ":12:1: G3: radius to the start 12.7 mm and to the end 28.3981 mm"},
       {"linuxcnc-tp/diagnostic/spiral_aggressive.ngc", ":12:1: G2: radius to the start 5.08 mm and to the end 53.34 mm"},

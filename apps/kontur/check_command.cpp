@@ -11,6 +11,8 @@
 
 #include <cstdio>
 #include <memory>
+#include <string>
+#include <utility>
 
 namespace kontur::app {
 namespace {
@@ -32,6 +34,20 @@ std::string feed_text(const gcode::Block& b) {
   if (b.type == gcode::BlockType::dwell) return fmt::format("dwell {} s", b.dwell_s);
   if (b.feed.mode == gcode::FeedMode::inverse_time) return fmt::format("F{} 1/min ({} s)", b.feed.value, b.feed.duration_s());
   return fmt::format("{} mm/min", b.feed.value);
+}
+
+// The extra axes a block moves, as " [A 0.000000 -> 90.000000 deg, W ...]" (empty when none moves: X Y Z
+// programs print as before).
+std::string extra_text(const gcode::Block& b) {
+  std::string s;
+  for (std::size_t i = 0; i < b.extra_start.size(); ++i) {
+    if (b.extra_start[i] == b.extra_end[i]) continue;
+    s += s.empty() ? " [" : ", ";
+    s += fmt::format("{} {} -> {} {}", extra_axis_letters[i], num(b.extra_start[i]), num(b.extra_end[i]),
+                     i < 3 ? "deg" : "mm");
+  }
+  if (!s.empty()) s += "]";
+  return s;
 }
 
 void run_check(const CheckOptions& o) {
@@ -59,6 +75,17 @@ void run_check(const CheckOptions& o) {
         if (b.type == gcode::BlockType::dwell) e["dwell_s"] = b.dwell_s;
         if (b.canned_cycle) e["canned_cycle"] = fmt::format("G{}", b.canned_cycle);
         e["end"] = {b.end.x(), b.end.y(), b.end.z()};
+        if (b.moves_extra_axes()) {  // only the extra axes that move: A B C [deg], U V W [mm]
+          nlohmann::ordered_json es = nlohmann::ordered_json::object(), ee = nlohmann::ordered_json::object();
+          for (std::size_t i = 0; i < b.extra_start.size(); ++i)
+            if (b.extra_start[i] != b.extra_end[i]) {
+              const std::string letter(1, extra_axis_letters[i]);
+              es[letter] = b.extra_start[i];
+              ee[letter] = b.extra_end[i];
+            }
+          e["extra_start"] = std::move(es);  // (a reference into e would not survive the next insertion)
+          e["extra_end"] = std::move(ee);
+        }
         blocks.push_back(e);
       });
     auto& t = j["totals"];
@@ -79,10 +106,10 @@ void run_check(const CheckOptions& o) {
   if (!o.quiet) {
     fmt::print("{:>8} {:>7} {:<10} {:>16} {}\n", "line", "N", "type", "length [mm]", "feed");
     gcode::check_program(o.file, ro, [](const gcode::Block& b, std::optional<double> len) {
-      fmt::print("{:>8} {:>7} {:<10} {:>16} {}{}\n", b.location.line,
+      fmt::print("{:>8} {:>7} {:<10} {:>16} {}{}{}\n", b.location.line,
                  b.location.n_number >= 0 ? fmt::format("N{}", b.location.n_number) : std::string(),
-                 gcode::to_string(b.type), len ? num(*len) : std::string("n/a"),
-                 feed_text(b), b.canned_cycle ? fmt::format(" (G{})", b.canned_cycle) : std::string());
+                 gcode::to_string(b.type), len ? num(*len) : std::string("n/a"), feed_text(b),
+                 b.canned_cycle ? fmt::format(" (G{})", b.canned_cycle) : std::string(), extra_text(b));
     });
   }
   fmt::print("\nprogram     {}: valid, {} lines, {} blocks\n", o.file, s.lines, s.blocks);

@@ -14,6 +14,7 @@ const char* keyword_name(Keyword k) { return k == Keyword::cip ? "CIP" : k == Ke
 
 void Executor::execute(const Words& words) {
   w = &words;
+  xto = xpos;  // the extra axes stay unless a move of this block moves them
   check_values();
   // A block that continues a spline being collected.
   if (spline != Spline::none && continue_spline()) return;
@@ -60,6 +61,7 @@ void Executor::before_control_flow(int column) {
 }
 
 void Executor::end_program() {
+  xto = xpos;
   finish_spline_at_end();
   ended_ = true;
 }
@@ -83,7 +85,7 @@ void Executor::check_values() const {
     const char letter = static_cast<char>('A' + c);
     if (letter == 'G' || letter == 'M' || !w->has(letter)) continue;
     const double v = w->get(letter);
-    const bool length_word = std::strchr("XYZIJKRQ", letter) != nullptr;
+    const bool length_word = std::strchr("XYZUVWIJKRQ", letter) != nullptr;  // A B C: angles [deg]
     const double limit = length_word ? tolerances::gcode_max_coordinate_mm : tolerances::gcode_max_value;
     if (!(std::abs(v) <= limit))
       fail(w->col(letter), "value-range", fmt::format("{}{}: beyond the supported range +-{}", letter, num(v), num(limit)));
@@ -105,11 +107,6 @@ void Executor::check_circle_end_block() const {
 }
 
 void Executor::check_words_allowed(const BlockCodes& codes) const {
-  for (const char c : {'A', 'B', 'C', 'U', 'V', 'W'})
-    if (w->has(c))
-      fail(w->col(c), "unsupported",
-           fmt::format("{}{}: rotary and extra axes (A B C U V W) are not supported: Kontur interpolates X Y Z", c,
-                       num(w->get(c))));
   if (w->indexed_present != 0 && w->keyword == Keyword::none) {
     for (int p = 0; p < 3; ++p)
       for (int a = 0; a < 3; ++a)
@@ -218,8 +215,10 @@ void Executor::set_work_system(const BlockCodes& codes) {
   if (g < 0) return;
   const int index = g <= 590 ? (g - 540) / 10 + 1 : 6 + (g - 590);
   const Vec3 m = to_machine(pos);
+  const ExtraAxes xm = extra_to_machine(xpos);
   modal.work_offset = index;
   pos = to_program(m);
+  xpos = xto = extra_to_program(xm);
 }
 
 void Executor::set_path_control(const BlockCodes& codes) {
@@ -306,7 +305,7 @@ void Executor::warn_unused_words(int motion, int nonmodal, int path, int tool_le
   std::string used = "FSTN";  // always meaningful
   auto add = [&](const char* letters) { used += letters; };
   const bool cycle = is_canned_cycle(motion);
-  if (moved || nonmodal == 100 || nonmodal == 280 || nonmodal == 300 || nonmodal == 920) add("XYZ");
+  if (moved || nonmodal == 100 || nonmodal == 280 || nonmodal == 300 || nonmodal == 920) add("XYZABCUVW");
   if (moved) {
     if (motion == 20 || motion == 30) add("IJKRP");
     if (motion == 50 || motion == 51) add("IJPQ");
@@ -328,6 +327,21 @@ void Executor::warn_unused_words(int motion, int nonmodal, int path, int tool_le
 
 void Executor::move(int motion, int col, bool machine_coordinates, int motion_word) {
   const Vec3 to = target(machine_coordinates);
+  // the extra axes move linearly along lines, arcs and helices; curves whose points come from
+  // several words or blocks have no place for them
+  if (motion == 50 || motion == 51 || motion == 52 || motion == 62)
+    refuse_extra_words(g_name(motion), "in a spline: its control points are X Y Z (move the extra axes in a block of "
+                                       "their own)");
+  if (motion == 24 || motion == 34 || motion == motion_cip || motion == motion_conic) {
+    const std::string word = motion == motion_cip     ? std::string("CIP")
+                             : motion == motion_conic ? std::string("CONIC")
+                                                      : g_name(motion, true);
+    refuse_extra_words(word, "in a circle or conic through intermediate points (move them in a block of their own)");
+  }
+  if (is_canned_cycle(motion))
+    refuse_extra_words(g_name(motion), "in a canned cycle (LinuxCNC moves them before the first hole; move them in "
+                                       "a block of their own)");
+  xto = extra_target(machine_coordinates);
   if (motion != 50 && motion != 51) prev_g5 = false;
   switch (motion) {
     case 0: line_move(BlockType::rapid, to, col, Feed{}); prev_g5 = false; return;

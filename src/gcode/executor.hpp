@@ -20,6 +20,7 @@
 #include <kontur/tolerances.hpp>
 
 #include <array>
+#include <cmath>
 #include <numbers>
 #include <set>
 #include <string>
@@ -106,6 +107,11 @@ private:
   double arc_tolerance_inch_ = tolerances::gcode_arc_radius_absolute_inch;  // [in]
   int group01_motion = -1;  // the last G0 / G1 / G2 / G3 motion mode (times 10), -1 before one
   Vec3 pos = Vec3::Zero();  // program coordinates [mm]
+  // The extra axes A B C [deg] U V W [mm] in program coordinates: where they are (xpos) and where
+  // the next block made goes (xto; xpos again when it is made). A block's words set xto (move,
+  // G28 / G30); every other block keeps the extra axes still.
+  ExtraAxes xpos{};
+  ExtraAxes xto{};
   CoordinateFrames frames;
   double feed_mm_per_min = 0.0;
   bool ended_ = false;
@@ -166,6 +172,10 @@ private:
   Eigen::Matrix3d rotation() const { return frames.linear(modal.work_offset); }
   Vec3 to_machine(const Vec3& p) const { return frames.to_machine(p, modal.work_offset); }
   Vec3 to_program(const Vec3& m) const { return frames.to_program(m, modal.work_offset); }
+  ExtraAxes extra_to_machine(const ExtraAxes& p) const { return frames.extra_to_machine(p, modal.work_offset); }
+  ExtraAxes extra_to_program(const ExtraAxes& m) const { return frames.extra_to_program(m, modal.work_offset); }
+  // The unit factor of extra axis i: U V W are lengths (G20: inch), A B C angles [deg] (never scaled).
+  double extra_scale(int i) const noexcept { return i >= 3 ? scale() : 1.0; }
   Block make_block(BlockType type, int column) const {
     Block b;
     b.type = type;
@@ -173,7 +183,12 @@ private:
     b.location = location(column);
     return b;
   }
+  // Appends a block; its extra axes go from xpos to xto (machine coordinates), and are at xto after it.
   void emit(Block&& b) {
+    b.extra_start = extra_to_machine(xpos);
+    b.extra_end = extra_to_machine(xto);
+    check_extra(b.extra_start, b.location.column);
+    check_extra(b.extra_end, b.location.column);
     check_point(b.start, b.location.column);
     check_point(b.end, b.location.column);
     for (int i = 0; i < b.via_count; ++i) check_point(b.via[static_cast<std::size_t>(i)], b.location.column);
@@ -182,6 +197,7 @@ private:
       if (d.norm() > 0.0) end_tangent = d.normalized();
     }
     queue.push_back(std::move(b));
+    xpos = xto;
   }
   void check_point(const Vec3& p, int column) const {
     const double m = tolerances::gcode_max_coordinate_mm;
@@ -189,7 +205,52 @@ private:
       fail(column, "coordinate-range",
            fmt::format("the point {} mm is beyond the supported range of +-{} mm", point_text(p), num(m)));
   }
+  void check_extra(const ExtraAxes& e, int column) const {
+    for (int i = 0; i < extra_axis_count; ++i) {
+      const double v = e[static_cast<std::size_t>(i)];
+      const double m = i >= 3 ? tolerances::gcode_max_coordinate_mm : tolerances::gcode_max_value;
+      if (!(std::abs(v) <= m))
+        fail(column, "coordinate-range",
+             fmt::format("{} {} {}: beyond the supported range of +-{} {}", extra_axis_letters[i], num(v),
+                         i >= 3 ? "mm" : "deg", num(m), i >= 3 ? "mm" : "deg"));
+    }
+  }
   int block_column() const { return w->first_column > 0 ? w->first_column : 1; }
+
+  // The block's first extra axis word (A B C U V W), or 0.
+  char extra_word() const noexcept {
+    for (int i = 0; i < extra_axis_count; ++i)
+      if (w->has(extra_axis_letters[i])) return extra_axis_letters[i];
+    return 0;
+  }
+  // Refuses the block's extra axis words where they cannot move: "`what` A10: extra axes ... `why`".
+  void refuse_extra_words(const std::string& what, const char* why) const {
+    if (const char c = extra_word())
+      fail(w->col(c), "unsupported",
+           fmt::format("{}{}{}: extra axes (A B C U V W) are not supported {}", what, what.empty() ? "" : " ",
+                       word_text(c), why));
+  }
+  std::string word_text(char c) const { return fmt::format("{}{}", c, num(w->get(c))); }
+  // The extra axis words of the block as a target in program coordinates (G53: the words are
+  // machine coordinates).
+  ExtraAxes extra_target(bool machine_coordinates = false) const {
+    ExtraAxes t = xpos;
+    if (machine_coordinates) {
+      ExtraAxes m = extra_to_machine(xpos);
+      for (int i = 0; i < extra_axis_count; ++i)
+        if (w->has(extra_axis_letters[i]))
+          m[static_cast<std::size_t>(i)] = w->get(extra_axis_letters[i]) * extra_scale(i);
+      return extra_to_program(m);
+    }
+    for (int i = 0; i < extra_axis_count; ++i) {
+      const char letter = extra_axis_letters[i];
+      if (!w->has(letter)) continue;
+      const auto k = static_cast<std::size_t>(i);
+      const double v = w->get(letter) * extra_scale(i);
+      t[k] = w->absolute(letter, modal.distance == DistanceMode::absolute) ? v : xpos[k] + v;
+    }
+    return t;
+  }
 
   // The axis words X Y Z of the block as a target in program coordinates [mm].
   Vec3 target(bool machine_coordinates = false) const {
@@ -209,7 +270,10 @@ private:
     if (w->polar != 0) t = polar_target(t);
     return t;
   }
-  bool has_axes() const noexcept { return w->has('X') || w->has('Y') || w->has('Z') || w->polar != 0; }
+  // X Y Z, polar words or an extra axis word (A B C U V W)
+  bool has_axes() const noexcept {
+    return w->has('X') || w->has('Y') || w->has('Z') || w->polar != 0 || extra_word() != 0;
+  }
 
   // Feed of a feed move (not rapid); errors if none is in effect.
   Feed feed_move(const std::string& what) const {

@@ -548,19 +548,29 @@ void FanucFrontEnd::dialect_codes(Words& w) {
   }
   // the decimal point: whole units, as Haas and Mach3 read them; a Fanuc with DPI=0 would not
   if (!decimal_warned && (dialect_ == Dialect::fanuc || dialect_ == Dialect::mitsubishi) && action != Action::g65) {
-    for (const char c : {'X', 'Y', 'Z', 'I', 'J', 'K', 'R', 'Q'}) {
+    for (const char c : {'X', 'Y', 'Z', 'A', 'B', 'C', 'I', 'J', 'K', 'R', 'Q'}) {
       if (!w.has(c) || !(integer_literal >> (c - 'A') & 1u) || w.get(c) == 0.0) continue;
       if (c == 'K' && (cycle_block || (state && is_canned_cycle(state->modal_state().motion_g10)))) continue;
       decimal_warned = true;
       const double v = w.get(c);
+      const bool angle = c == 'A' || c == 'B' || c == 'C';  // rotary axes: degrees, increments of 0.001 deg
+      const char* unit = angle ? "deg" : units() == 1.0 ? "mm" : "inch";
       diag.warn(w.col(c),
                 fmt::format("{}{}: written without a decimal point, read as {} {}; a {} with parameter 3401#0 "
                             "DPI=0 reads it as {} least increments ({} {}) (warned once)",
-                            c, num(v), num(v), units() == 1.0 ? "mm" : "inch", d, num(v),
-                            num(v * (units() == 1.0 ? 0.001 : 0.0001)), units() == 1.0 ? "mm" : "inch"));
+                            c, num(v), num(v), unit, d, num(v),
+                            num(v * (angle || units() == 1.0 ? 0.001 : 0.0001)), unit));
       break;
     }
   }
+  // U V W: on the Fanuc family's lathes the incremental X Y Z (U-4.6 is X 4.6 less); its mills have
+  // A B C as their 4th and 5th axes (read), and no U V W axes. (G65's U V W are arguments.)
+  if (action != Action::g65)
+    for (const char c : {'U', 'V', 'W'})
+      if (w.has(c))
+        refuse(w.col(c), fmt::format("{}{}", c, num(w.get(c))),
+               "a lathe's incremental X Y Z (U V W): lathe programs (X as a diameter, feed per revolution) are not "
+               "supported; A B C are the rotary axes of a mill");
   switch (action) {
     case Action::none:
       return;

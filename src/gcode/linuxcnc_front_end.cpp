@@ -70,7 +70,8 @@ LineOutcome LinuxcncFrontEnd::read_line(std::string_view raw, Words& words) {
     if (a.index > 0) params.set_numbered(a.index, a.value);
     else params.set_named(a.name, a.value);
   }
-  if (words.has('X') || words.has('Y') || words.has('Z')) axis_words_seen = true;
+  for (const char c : {'X', 'Y', 'Z', 'A', 'B', 'C', 'U', 'V', 'W'})
+    if (words.has(c)) axis_words_seen = true;
   return words.empty() ? LineOutcome::nothing : LineOutcome::words;
 }
 

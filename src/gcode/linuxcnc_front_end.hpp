@@ -41,7 +41,7 @@ private:
   std::size_t assignment_count = 0;
   bool tape = false;        // the program started with '%'
   bool seen_block = false;  // a line with content was read
-  bool axis_words_seen = false;  // a block with X, Y or Z was read (grbl: homing after it moves)
+  bool axis_words_seen = false;  // a block with an axis word (X..W) was read (grbl: homing after it moves)
   bool program_number_warned = false;  // a Fanuc / Haas program number was noted
 
   // grbl: a `$` line (a setting or a system command) at `column`; refused if it moves the axes.

@@ -44,6 +44,7 @@ void Executor::g10(int col) {
     fail(w->col('P'), "g10", fmt::format("G10 P{}: coordinate system must be 0..9", num(p)));
   const int index = p == 0.0 ? modal.work_offset : static_cast<int>(p);
   const Vec3 m = to_machine(pos);
+  const ExtraAxes xm = extra_to_machine(xpos);
   const char letters[3] = {'X', 'Y', 'Z'};
   if (w->has('R')) {
     if (l == 20.0) fail(w->col('R'), "g10", "G10 L20: R (rotation) only with L2");
@@ -52,6 +53,9 @@ void Executor::g10(int col) {
   if (l == 2.0) {
     for (int a = 0; a < 3; ++a)
       if (w->has(letters[a])) frames.set_offset(index, a, w->get(letters[a]) * scale());
+    for (int i = 0; i < extra_axis_count; ++i)  // the extra axes: plain offsets, never rotated
+      if (w->has(extra_axis_letters[i]))
+        frames.set_extra_offset(index, i, w->get(extra_axis_letters[i]) * extra_scale(i));
   } else {
     // L20: the offset that makes the current point have the given program coordinates
     Vec3 p_new = pos;
@@ -60,22 +64,41 @@ void Executor::g10(int col) {
     const Vec3 off = frames.offset_placing(m, p_new, index);
     for (int a = 0; a < 3; ++a)
       if (w->has(letters[a])) frames.set_offset(index, a, off[a]);
+    for (int i = 0; i < extra_axis_count; ++i)
+      if (w->has(extra_axis_letters[i]))
+        frames.set_extra_offset(index, i,
+                                frames.extra_offset_placing(i, xm[static_cast<std::size_t>(i)],
+                                                            w->get(extra_axis_letters[i]) * extra_scale(i)));
   }
-  if (index == modal.work_offset) pos = to_program(m);
+  if (index == modal.work_offset) {
+    pos = to_program(m);
+    xpos = xto = extra_to_program(xm);
+  }
 }
 
 void Executor::home(int g, int col) {
   const int base = g == 280 ? 5161 : 5181;
   Vec3 home_m(params.numbered(base) * scale(), params.numbered(base + 1) * scale(), params.numbered(base + 2) * scale());
+  // the extra axes' home: #5164-#5169 (G28), #5184-#5189 (G30), A B C [deg], U V W in program units
+  ExtraAxes home_x{};
+  for (int i = 0; i < extra_axis_count; ++i)
+    home_x[static_cast<std::size_t>(i)] = params.numbered(base + 3 + i) * extra_scale(i);
   if (has_axes()) {
+    // LinuxCNC: a rapid to the intermediate point, then the axes given (only those) to their home
     const Vec3 via = target();
+    xto = extra_target();
     line_move(BlockType::rapid, via, col, Feed{});
     Vec3 m = to_machine(pos);
     const char letters[3] = {'X', 'Y', 'Z'};
     for (int a = 0; a < 3; ++a)
       if (w->has(letters[a])) m[a] = home_m[a];
+    ExtraAxes xm = extra_to_machine(xpos);
+    for (int i = 0; i < extra_axis_count; ++i)
+      if (w->has(extra_axis_letters[i])) xm[static_cast<std::size_t>(i)] = home_x[static_cast<std::size_t>(i)];
+    xto = extra_to_program(xm);
     line_move(BlockType::rapid, to_program(m), col, Feed{});
   } else {
+    xto = extra_to_program(home_x);  // every axis home
     line_move(BlockType::rapid, to_program(home_m), col, Feed{});
   }
 }
@@ -84,6 +107,9 @@ void Executor::store_home(int g) {
   const Vec3 m = to_machine(pos) / scale();
   const int base = g == 281 ? 5161 : 5181;
   for (int a = 0; a < 3; ++a) params.set_numbered(base + a, m[a]);
+  const ExtraAxes xm = extra_to_machine(xpos);
+  for (int i = 0; i < extra_axis_count; ++i)
+    params.set_numbered(base + 3 + i, xm[static_cast<std::size_t>(i)] / extra_scale(i));
 }
 
 void Executor::g92(int g, int col) {
@@ -96,13 +122,22 @@ void Executor::g92(int g, int col) {
         frames.shift_g92(a, pos[a], v);
         pos[a] = v;
       }
+    for (int i = 0; i < extra_axis_count; ++i)
+      if (w->has(extra_axis_letters[i])) {
+        const auto k = static_cast<std::size_t>(i);
+        const double v = w->get(extra_axis_letters[i]) * extra_scale(i);
+        frames.shift_extra_g92(i, xpos[k], v);
+        xpos[k] = xto[k] = v;
+      }
     frames.save_g92();
     return;
   }
   const Vec3 m = to_machine(pos);
+  const ExtraAxes xm = extra_to_machine(xpos);
   if (g == 923) frames.restore_g92();
   else frames.clear_g92(g == 921);
   pos = to_program(m);
+  xpos = xto = extra_to_program(xm);
 }
 
 }  // namespace kontur::gcode::detail

@@ -16,14 +16,19 @@ void Executor::programmable_frame() {
   const FrameOp op = w->frame_op;
   const std::string word = names[static_cast<int>(op)];
   const int col = w->frame_column > 0 ? w->frame_column : block_column();
+  // TRANS / ATRANS shift the extra axes too; ROT, SCALE and MIRROR act on X Y Z only
+  const bool translation = op == FrameOp::trans || op == FrameOp::atrans;
+  if (!translation) refuse_extra_words(word, "in a frame instruction: ROT, SCALE and MIRROR act on X Y Z");
   for (char c = 'A'; c <= 'Z'; ++c)
-    if (w->has(c) && c != 'X' && c != 'Y' && c != 'Z')
+    if (w->has(c) && c != 'X' && c != 'Y' && c != 'Z' && !(translation && extra_axis_index(c) >= 0))
       fail(w->col(c), "frame-words",
            fmt::format("{}: {} is not allowed in a frame block (X Y Z{} only)", word, c,
                        op == FrameOp::rot || op == FrameOp::arot ? " RPL=" : ""));
   if (w->g_count > 0 || w->m_count > 0 || w->keyword != Keyword::none)
     fail(col, "frame-words", fmt::format("{}: a frame instruction stands in a block of its own", word));
   const Vec3 machine = to_machine(pos);
+  const ExtraAxes extra_machine = extra_to_machine(xpos);
+  ExtraAxes xt = frames.programmable_extra();
   Eigen::Matrix3d a = frames.programmable_linear();
   Vec3 t = frames.programmable_translation();
   const bool any = has_axes() || w->frame_has_rpl;
@@ -39,9 +44,13 @@ void Executor::programmable_frame() {
       if (op == FrameOp::trans) {
         a.setIdentity();
         t = v;
+        xt.fill(0.0);
       } else {
         t += a * v;
       }
+      for (int i = 0; i < extra_axis_count; ++i)
+        if (w->has(extra_axis_letters[i]))
+          xt[static_cast<std::size_t>(i)] += w->get(extra_axis_letters[i]) * extra_scale(i);
       break;
     }
     case FrameOp::rot:
@@ -60,6 +69,7 @@ void Executor::programmable_frame() {
       if (op == FrameOp::rot) {
         a = r;
         t.setZero();
+        xt.fill(0.0);
       } else {
         a = a * r;
       }
@@ -81,6 +91,7 @@ void Executor::programmable_frame() {
       if (op == FrameOp::scale) {
         a = m;
         t.setZero();
+        xt.fill(0.0);
       } else {
         a = a * m;
       }
@@ -95,6 +106,7 @@ void Executor::programmable_frame() {
       if (op == FrameOp::mirror) {
         a = m;
         t.setZero();
+        xt.fill(0.0);
       } else {
         a = a * m;
       }
@@ -106,9 +118,12 @@ void Executor::programmable_frame() {
   if ((op == FrameOp::trans || op == FrameOp::rot || op == FrameOp::mirror || op == FrameOp::scale) && !any) {
     a.setIdentity();  // TRANS / ROT / MIRROR alone: no programmable frame
     t.setZero();
+    xt.fill(0.0);
   }
   frames.set_programmable(a, t);
+  frames.set_programmable_extra(xt);
   pos = to_program(machine);  // the tool stays where it is; its program coordinates change
+  xpos = xto = extra_to_program(extra_machine);
 }
 
 }  // namespace kontur::gcode::detail
@@ -123,6 +138,7 @@ void Executor::define_pole() {
          fmt::format(
              "{} with AP= / RP=: a pole given in polar coordinates is not supported by Kontur (dialect sinumerik)",
              word));
+  refuse_extra_words(word, "in a pole definition (the pole lies in the plane)");
   if (w->g_count > 1 || w->m_count > 0 || w->keyword != Keyword::none)
     fail(col, "pole", fmt::format("{}: a pole is defined in a block of its own", word));
   const PlaneAxes pa = plane_axes(modal.plane);

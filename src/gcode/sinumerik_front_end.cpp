@@ -593,8 +593,14 @@ void SinumerikFrontEnd::address(char letter, int col, Words& words) {
       v = expr(cur);
       if (!cur.eat(')')) fail(cur.col(), "syntax", fmt::format("{}(: ')' expected", id));
       (id == "AC" ? ac : ic) = true;
-      if (!std::strchr("XYZIJK", letter))
-        fail(col, "syntax", fmt::format("{}={}(..): AC / IC only on the axes X Y Z and on I J K", letter, id));
+      if (!std::strchr("XYZABCUVWIJK", letter))
+        fail(col, "syntax",
+             fmt::format("{}={}(..): AC / IC only on the axes X Y Z A B C U V W and on I J K", letter, id));
+    } else if ((id == "DC" || id == "ACP" || id == "ACN") && look.peek() == '(') {
+      fail(col, "unsupported",
+           fmt::format("{}={}(..): positioning a rotary axis by the shortest way or in one direction (DC, ACP, ACN: "
+                       "modulo axes) is not supported; A B C are read as plain angles (write {}=AC(..) or {}=IC(..))",
+                       letter, id, letter, letter));
     } else if (cur.peek() == '"') {
       const std::string s = string_literal(cur);
       if (letter != 'T')

@@ -274,6 +274,11 @@ bool Executor::continue_spline() {
 void Executor::check_spline_words(const char* allowed, const char* word) const {
   for (int c = 0; c < 26; ++c) {
     const char letter = static_cast<char>('A' + c);
+    if (w->has(letter) && extra_axis_index(letter) >= 0)
+      fail(w->col(letter), "unsupported",
+           fmt::format("{} {}: extra axes (A B C U V W) are not supported in a spline: its control points are X Y Z "
+                       "(move the extra axes in a block of their own)",
+                       word, word_text(letter)));
     if (w->has(letter) && !std::strchr(allowed, letter))
       fail(w->col(letter), "nurbs-words", fmt::format("{}: {} not allowed in a control point block", word, letter));
   }

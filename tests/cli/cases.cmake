@@ -39,6 +39,10 @@ kontur_cli_case(check_all_block_types 0
                 check tests/data/gcode/good/all_block_types.ngc)
 kontur_cli_case(check_json 0 "\"type\": \"circle_3d\".*\"path_length_mm\": 210\\.8025" check --json
                 tests/data/gcode/good/all_block_types.ngc)
+kontur_cli_case(check_extra_axes 0 "line +25\\.400000 2540 mm/min \\[A 0\\.000000 -> 100\\.000000 deg\\]" check
+                ../shared/data/gcode/linuxcnc-tp/diagnostic/abc_tangent.ngc)
+kontur_cli_case(check_extra_axes_json 0 "\"extra_start\": {[^}]*\"A\": 0\\.0[^}]*},[^\"]*\"extra_end\": {[^}]*\"A\": 100\\.0" check
+                --json ../shared/data/gcode/linuxcnc-tp/diagnostic/abc_tangent.ngc)
 kontur_cli_case(check_3d_chips 0 "4681 line.*path length 5814\\.068986 mm" check --quiet ../shared/data/gcode/3D_Chips.ngc)
 kontur_cli_case(check_g6_nurbs_warning 0 "1 nurbs.*warning: G6\\.2 Q1: LinuxCNC's approximation" check
                 ../shared/data/gcode/linuxcnc-nurbs/G6_homer-16_n1-1-xy.ngc)
