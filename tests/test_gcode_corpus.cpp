@@ -2,7 +2,7 @@
 // Fanuc, Haas, Mitsubishi, Sinumerik, grbl, Mach3 and LinuxCNC controls; provenance in its
 // README.md). Every program is read in the dialect of its folder, as `--dialect` would; the outcome
 // must be the one expected.tsv records for it: read to its recorded number of blocks (and then run
-// on the default machine with every limit held and every setpoint on the path), or stopped with
+// on the default machine, with extra axes, with every limit held and every setpoint on the path), or stopped with
 // the exact refusal. The dialect detected from the program must be the one recorded too.
 // tests/corpus/record.sh writes the columns `detected`, `refusal` and `blocks` anew from the
 // current build, for review in the diff.
@@ -81,10 +81,16 @@ TEST_P(Corpus, ReadInItsDialectAsExpectedAndRunsWithinEveryLimit) {
     EXPECT_EQ(message, p.refusal) << p.file;
     return;
   }
-  // A program that reads also runs: every limit held, every setpoint on the programmed path.
+  // A program that reads also runs: every limit held, every setpoint on the programmed path (on
+  // the default machine with the extra axes A B C U V W that 4- and 5-axis programs move).
   PipelineOptions run;
   run.reader = options;
-  Pipeline pipeline(default_machine(), run);
+  Machine machine = default_machine();
+  for (const char c : std::string("ABCUVW")) {
+    const bool rotary = c <= 'C';
+    machine.axes.push_back({c, rotary, rotary ? 360.0 : 200.0, rotary ? 3600.0 : 2000.0, rotary ? 90000.0 : 50000.0});
+  }
+  Pipeline pipeline(machine, run);
   const RunResult r = pipeline.run(path);
   // Planner faults the corpus found and that are not mended yet (each one an open issue): the check
   // must keep finding exactly that, so that the entry goes when the fault does.
@@ -95,8 +101,8 @@ TEST_P(Corpus, ReadInItsDialectAsExpectedAndRunsWithinEveryLimit) {
   };
   if (const auto fault = known_planner_faults.find(p.file); fault != known_planner_faults.end()) {
     ASSERT_FALSE(r.passed) << p.file << ": the known fault is gone: remove it from known_planner_faults";
-    ASSERT_EQ(r.check.failures(default_machine()).size(), 1u) << r.summary_json;
-    EXPECT_EQ(r.check.failures(default_machine())[0], fault->second);
+    ASSERT_EQ(r.check.failures(machine).size(), 1u) << r.summary_json;
+    EXPECT_EQ(r.check.failures(machine)[0], fault->second);
     return;
   }
   EXPECT_TRUE(r.passed) << p.file << ": " << r.summary_json;

@@ -45,7 +45,10 @@ Move move_of(const gcode::Block& b, const Machine& machine) {
     const auto i = static_cast<std::size_t>(e);
     if (b.extra_start[i] == b.extra_end[i] || machine.axis(extra_axis_letters[e]) != nullptr) continue;
     std::string axes;
-    for (const AxisLimits& a : machine.axes) axes += a.name;
+    for (const AxisLimits& a : machine.axes) {
+      if (!axes.empty()) axes += ' ';
+      axes += a.name;
+    }
     throw InputError("axis-missing",
                      fmt::format("{}:{}: the block moves {} (to {}), but the machine {} ({}) has no {} axis (its axes: {})",
                                  b.location.file ? *b.location.file : std::string("?"), b.location.line,

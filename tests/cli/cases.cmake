@@ -159,6 +159,16 @@ endif()
 
 # kontur run (issue 5, in progress): the bundled example passes the independent check.
 kontur_cli_case(run_example 0 "\"passed\": true" run examples/programs/square_arc.ngc -o -)
+# Four axes (issue 14): the rotary example in inverse time writes an A column and passes; a program
+# that moves A on a machine without it is refused, naming the axis, the line and the machine.
+kontur_cli_case(run_rotary_g93 0 "\"max_extra_axis_error\": [0-9.e-]+,[^}]*\"passed\": true" run
+                examples/programs/rotary_g93.ngc --machine examples/machines/router_4axis.toml
+                -o /tmp/kontur_cli_rotary.csv --summary -)
+kontur_cli_case(run_rotary_g93_columns 0 "^t,x,y,z,a,v,block\n0\\.000000000,0,0,0,0,0\\.000000,4" run
+                examples/programs/rotary_g93.ngc --machine examples/machines/router_4axis.toml -o - --quiet)
+kontur_cli_case(run_axis_the_machine_lacks 1
+                "rotary_g93\\.ngc:8: the block moves A \\(to 30\\), but the machine .* has no A axis \\(its axes: X Y Z\\)" run
+                examples/programs/rotary_g93.ngc -o /tmp/kontur_cli_rotary_refused.csv)
 # --time-optimal: the reference time and the ratio (>= 1: the reference is a lower bound).
 kontur_cli_case(run_time_optimal 0 "\"time_optimal_s\": [0-9.]+,[^}]*\"time_ratio\": 1\\.[0-9]+" run examples/programs/square_arc.ngc --time-optimal -o /tmp/kontur_cli_run_time_optimal.csv)
 kontur_cli_case(run_bad_program 1 "knot_count\\.ngc:[0-9]+:[0-9]+: G0?6\\.2: [0-9]+ knots given" run tests/data/gcode/bad/knot_count.ngc -o /tmp/kontur_cli_run_bad.csv)
