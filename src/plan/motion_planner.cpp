@@ -139,6 +139,7 @@ void MotionPlanner::push(const program::Move& move) {
     seg.extra_end = move.extra_end;
     seg.move_length_mm = length;
     seg.tool_still = move.tool_still;
+    seg.moves_extra = program::moves_extra_axes(move);
     seg.move = move.id;
     seg.source_line = move.source_line;
     piece.geometry = p.geometry;

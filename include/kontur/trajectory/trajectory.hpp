@@ -27,9 +27,10 @@ struct Segment {
   double move_length_mm = 0.0;
   /// The tool point stands (only extra axes move): s runs over the extra axes' distance, u stays.
   bool tool_still = false;
+  bool moves_extra = false;  ///< extra_start != extra_end
   /// The extra axes at distance `s_mm` along the move: exactly extra_start at 0 and extra_end at the end.
   [[nodiscard]] ExtraAxes extra_at(double s_mm) const noexcept {
-    if (!(s_mm > 0.0) || !(move_length_mm > 0.0)) return extra_start;
+    if (!moves_extra || !(s_mm > 0.0) || !(move_length_mm > 0.0)) return extra_start;
     if (s_mm >= move_length_mm) return extra_end;
     const double f = s_mm / move_length_mm;
     ExtraAxes x;
