@@ -12,6 +12,7 @@
 #include <kontur/geometry/line_segment.hpp>
 #include <kontur/io/setpoint_reader.hpp>
 #include <kontur/io/setpoint_writer.hpp>
+#include <kontur/pipeline.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/verify/checker.hpp>
 #include <numbers>
@@ -270,6 +271,87 @@ TEST(ExtraAxes, LinuxcncIniWithNineAxes) {
     FAIL() << "read";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("[AXIS_W]"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace kontur
+
+namespace kontur {
+namespace {
+
+// Seeded random 4- and 5-axis programs as G-code, through the whole pipeline (reader, program
+// stage, planner, sampler, checker): lines and rapids with A (and B), arcs and helices turning A,
+// moves of the rotary axes alone, inverse-time (G93) blocks, and a NURBS (G5.2) between them. Every
+// run keeps every axis's limits, every setpoint on its move (the extra axes included), and ends
+// exactly (1e-9) where the program ends.
+TEST(ExtraAxes, SeededRandomFourAndFiveAxisProgramsRunAndPass) {
+  std::mt19937_64 rng(20261202);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  const auto dir = std::filesystem::temp_directory_path();
+  for (int trial = 0; trial < 12; ++trial) {
+    const bool five = trial % 2 == 1;
+    Machine m = machine_with(five ? "AB" : "A");
+    if (trial % 3 == 0) m.servo_period_s = 0.000125;
+    std::ostringstream g;
+    g << "G21 G90 G17 G94 G64 P0.01\nG0 X0 Y0 Z5 A0" << (five ? " B0" : "") << "\nF1200\n";
+    double x = 0, y = 0, a = 0, b = 0;
+    const int n = 6 + static_cast<int>(rng() % 10);
+    for (int k = 0; k < n; ++k) {
+      const double da = std::round(900.0 * U(rng)) / 10.0, db = five ? std::round(450.0 * U(rng)) / 10.0 : 0.0;
+      a += da;
+      b += db;
+      std::ostringstream ab;
+      ab << " A" << a << (five ? " B" + std::to_string(b) : "");
+      switch (rng() % 6) {
+        case 0:  // the rotary axes alone, in deg/min
+          g << "G1" << ab.str() << " F" << 600 + rng() % 3000 << "\n";
+          break;
+        case 1: {  // an arc turning the rotary axes (a full quarter around a centre 5 mm away)
+          const double nx = x + 5.0, ny = y + 5.0;
+          const bool along_x = rng() % 2 == 1;  // the centre at (x + 5, y) or (x, y + 5)
+          g << (rng() % 2 ? "G2" : "G3") << " X" << nx << " Y" << ny << " I" << (along_x ? 5 : 0) << " J"
+            << (along_x ? 0 : 5) << ab.str() << " F" << 300 + rng() % 1500 << "\n";
+          x = nx;
+          y = ny;
+          break;
+        }
+        case 2: {  // inverse time: the block takes 1/F minutes
+          x += 10.0 * U(rng);
+          y += 10.0 * U(rng);
+          g << "G93 G1 X" << x << " Y" << y << ab.str() << " F" << 30 + rng() % 300 << "\nG94\n";
+          break;
+        }
+        case 3: {  // a rapid
+          x += 20.0 * U(rng);
+          g << "G0 X" << x << ab.str() << "\n";
+          break;
+        }
+        case 4: {  // a NURBS of the tool path (the rotary axes stand: control points are X Y Z)
+          a -= da;
+          b -= db;
+          g << "G5.2 X" << x << " Y" << y << " P1 L3\nX" << x + 4 << " Y" << y + 6 << " P1\nX" << x + 8 << " Y"
+            << y - 3 << " P2\nX" << x + 12 << " Y" << y << " P1\nG5.3\n";
+          x += 12;
+          break;
+        }
+        default: {  // a line with the rotary axes
+          x += 15.0 * U(rng);
+          y += 15.0 * U(rng);
+          g << "G1 X" << x << " Y" << y << ab.str() << "\n";
+        }
+      }
+    }
+    g << "M2\n";
+    const auto path = dir / ("kontur_random_axes_" + std::to_string(trial) + ".ngc");
+    std::ofstream(path) << g.str();
+    SCOPED_TRACE(g.str());
+    Pipeline pipeline(m);
+    const RunResult r = pipeline.run(path.string());
+    EXPECT_TRUE(r.passed) << r.summary_json.substr(0, 1500);
+    EXPECT_LE(r.check.end_error_mm, 1e-9);
+    EXPECT_EQ(pipeline.layout().letters(), five ? "XYZAB" : "XYZA");
+    std::filesystem::remove(path);
   }
 }
 
