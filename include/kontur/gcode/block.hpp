@@ -42,6 +42,7 @@ enum class FeedMode { units_per_minute, inverse_time };  ///< G94 / G93
 enum class SpindleState { off, clockwise, counter_clockwise };  ///< M5 / M3 / M4
 enum class PathControl { blend, exact_path, exact_stop };  ///< G64 / G61 / G61.1 (LinuxCNC names)
 enum class RetractMode { initial_z, r_plane };        ///< G98 / G99 for canned cycles
+enum class CutterComp { off, left, right };           ///< G40 / G41 (G41.1) / G42 (G42.1)
 
 /// The modal state a block runs in (recorded; only what changes coordinates is applied).
 struct ModalState {
@@ -63,6 +64,14 @@ struct ModalState {
   double blend_tolerance_mm = 0.0;       ///< G64 P: path blending tolerance [mm] (0 = none given)
   double naive_cam_tolerance_mm = 0.0;   ///< G64 Q: naive-CAM tolerance [mm] (0 = none given)
   RetractMode retract = RetractMode::initial_z;  ///< G98 / G99
+  /// Cutter radius compensation: the side of the programmed contour the tool keeps (G41 left, G42
+  /// right of the direction of motion, in the active plane), and its radius [mm] (G41 D: the tool
+  /// table's diameter / 2; G41.1 D: half the diameter given). Blocks made under compensation carry
+  /// the programmed contour; the reader's compensation stage (gcode/cutter_compensation) offsets them.
+  CutterComp cutter_comp = CutterComp::off;
+  double cutter_radius_mm = 0.0;
+  /// The tool length offset applied along Z [mm] (G43 H: the table's length; G43.1: the word's; G49: 0).
+  double tool_length_mm = 0.0;
 };
 
 /// The feed of a block.
