@@ -138,6 +138,13 @@ inline constexpr int gcode_dialect_detection_lines = 400;
 /// Largest number of pecks of one G73 / G83 hole (Q too small for the depth is an error).
 inline constexpr int gcode_max_pecks = 10000;
 
+// ---- cutter radius compensation (G41 / G42, gcode/cutter_compensation)
+/// Two offset points closer than this [mm] are one (tangent moves: no corner arc, no trimming); a
+/// move shorter in the plane than this is a move along the plane's normal (it keeps the offset).
+inline constexpr double cutter_comp_same_point_mm = 1e-9;
+/// Smallest radius [mm] of an offset arc: an arc whose offset radius is not larger is a gouge.
+inline constexpr double cutter_comp_min_radius_mm = 1e-9;
+
 // ---- arcs and conics through points (methods.md sections 4 and 5)
 // Every test below is relative to the extent of the given points (their largest pairwise
 // distance [mm]), so that the same input scaled by any factor gives the same verdict.

@@ -1,5 +1,6 @@
 // The Reader: the program's lines (ProgramInput) through the dialect's front end (lexing and
 // control flow) into the dialect-neutral executor, which makes the blocks handed out by next().
+#include "cutter_compensation.hpp"
 #include "dialect_front_end.hpp"
 #include "executor.hpp"
 
@@ -18,8 +19,11 @@ struct Reader::Impl {
   DialectChoice dialect;
   std::unique_ptr<detail::DialectFrontEnd> front_end;
   detail::Words words;
-  std::size_t head = 0;     // next block of executor.blocks() to hand out
+  detail::CutterCompensation compensation;  // between the executor and next()
+  std::vector<Block> out;   // compensated blocks, handed out by next()
+  std::size_t head = 0;     // next block of `out` to hand out
   bool finished = false;    // the input ended, or an error was thrown
+  bool flushed = false;     // the compensation handed out what it held at the end
 
   Impl(std::string_view name, ReaderOptions o) : opt(o), diag(name, opt.max_warnings_kept), input(diag), executor(diag, params) {}
 
@@ -81,28 +85,39 @@ Reader& Reader::operator=(Reader&&) noexcept = default;
 bool Reader::next(Block& out) {
   Impl& r = *impl_;
   auto& queue = r.executor.blocks();
-  while (r.head == queue.size()) {
-    queue.clear();
+  while (r.head == r.out.size()) {
+    r.out.clear();
     r.head = 0;
-    if (r.finished || r.executor.ended()) return false;
+    if (r.flushed) return false;
     try {
-      r.read_more();
+      if (!queue.empty()) {
+        // The executor's blocks through the cutter compensation.
+        for (Block& b : queue) r.compensation.push(std::move(b), r.out);
+        queue.clear();
+      } else if (r.finished || r.executor.ended()) {
+        r.compensation.finish(r.out);
+        r.flushed = true;
+      } else {
+        r.read_more();
+      }
     } catch (const InputError& e) {
-      r.finished = true;  // after an error the reader hands out nothing more
+      r.finished = r.flushed = true;  // after an error the reader hands out nothing more
       queue.clear();
+      r.out.clear();
       r.head = 0;
       // Every refusal names the dialect it was read in (front ends' own messages already do).
       const std::string message = e.what();
       if (message.find(fmt::format("dialect {}", to_string(r.dialect.dialect))) != std::string::npos) throw;
       throw InputError(e.rule(), fmt::format("{} (dialect {})", message, to_string(r.dialect.dialect)));
     } catch (...) {
-      r.finished = true;
+      r.finished = r.flushed = true;
       queue.clear();
+      r.out.clear();
       r.head = 0;
       throw;
     }
   }
-  out = std::move(queue[r.head++]);
+  out = std::move(r.out[r.head++]);
   return true;
 }
 const std::vector<std::string>& Reader::warnings() const noexcept { return impl_->diag.warnings(); }
