@@ -184,7 +184,9 @@ TEST(ExtraAxes, SeededRandomFourAndFiveAxisPathsKeepEveryLimitAndEndExactly) {
     const Setpoint& end = r.points.back();
     EXPECT_LE((layout.tool(end.position) - p).norm(), 1e-9);
     EXPECT_EQ(layout.extra(end.position)[0], x[0]);
-    if (five) EXPECT_EQ(layout.extra(end.position)[1], x[1]);
+    if (five) {
+      EXPECT_EQ(layout.extra(end.position)[1], x[1]);
+    }
   }
 }
 
