@@ -174,6 +174,11 @@ TEST(FanucRegisters, TheLinuxcncTableFillsTheRegistersByToolNumber) {
   EXPECT_DOUBLE_EQ(b[0].end.z(), 7.0);
   EXPECT_DOUBLE_EQ(b[1].modal.cutter_radius_mm, 4.0);
   EXPECT_EQ(b[1].modal.cutter_comp, CutterComp::right);
+  // Fanuc 0M writes the register with H beside G41 / G42 when there is no D
+  const auto h = read("G21 F100.\nG42 H2 G1 X5.\nM30\n", table("T2 Z7 D8\n"), Dialect::fanuc);
+  ASSERT_EQ(h.size(), 1u);
+  EXPECT_DOUBLE_EQ(h[0].modal.cutter_radius_mm, 4.0);
+  EXPECT_DOUBLE_EQ(h[0].modal.tool_length_mm, 0.0);
 }
 
 }  // namespace

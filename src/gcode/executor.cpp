@@ -243,6 +243,12 @@ double Executor::tool_radius_of(int n, int column, const std::string& word) cons
   return r;
 }
 
+bool Executor::cutter_register_h(const BlockCodes& codes) const {
+  const int g = codes.code(g_cutter);
+  return rules_.fanuc_offset_registers && (g == 410 || g == 420) && !w->has('D') && w->has('H') &&
+         codes.code(g_tool_length) < 0;
+}
+
 void Executor::set_cutter_comp(const BlockCodes& codes) {
   const int g = codes.code(g_cutter);
   if (g < 0) return;
@@ -268,9 +274,11 @@ void Executor::set_cutter_comp(const BlockCodes& codes) {
     const double d = w->get('D');
     if (d < 0.0) fail(w->col('D'), "negative-radius", fmt::format("{} D{}: the diameter must be >= 0", name, num(d)));
     radius = d * scale() / 2.0;
-  } else if (w->has('D')) {
-    const int n = register_word('D', "the tool number");
-    radius = tool_radius_of(n, w->col('D'), fmt::format("{} D{}", name, n));
+  } else if (w->has('D') || cutter_register_h(codes)) {
+    // the Fanuc family: an H beside G41 / G42 without D (Fanuc 0M's offset number) names the register
+    const char r = w->has('D') ? 'D' : 'H';
+    const int n = register_word(r, "the tool number");
+    radius = tool_radius_of(n, w->col(r), fmt::format("{} {}{}", name, r, n));
   } else {
     radius = tool_radius_of(modal.tool, col, fmt::format("{} (the current tool T{})", name, modal.tool));
   }
@@ -425,7 +433,7 @@ void Executor::warn_unused_words(int motion, int nonmodal, int path, int tool_le
   if (path == 640) add("PQ");
   if (tool_length == 430 || tool_length == 432) add("H");
   if (tool_length == 431) add("Z");
-  if (cutter == 410 || cutter == 420 || cutter == 411 || cutter == 421) add("D");
+  if (cutter == 410 || cutter == 420 || cutter == 411 || cutter == 421) add(rules_.fanuc_offset_registers ? "DH" : "D");
   for (int c = 0; c < 26; ++c) {
     const char letter = static_cast<char>('A' + c);
     if (letter == 'G' || letter == 'M' || !w->has(letter) || used.find(letter) != std::string::npos) continue;

@@ -342,6 +342,8 @@ private:
   void warn_ignored_m_codes(const BlockCodes& codes);
   void set_plane(const BlockCodes& codes);
   void set_cutter_comp(const BlockCodes& codes);
+  // The Fanuc family's G41 / G42 H n without D (Fanuc 0M): H names the radius register.
+  bool cutter_register_h(const BlockCodes& codes) const;
   void set_tool_length(const BlockCodes& codes);
   // The tool length offset becomes `mm`; the machine stays where it is (the program position changes).
   void apply_tool_length(double mm);
