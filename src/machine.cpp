@@ -131,6 +131,17 @@ Machine read_machine_toml(const std::filesystem::path& file) {
         fail(fmt::format("{}:{}", src, node.source().begin.line), "dialect",
              fmt::format("dialect {}: not a G-code dialect (expected one of {})", name.value_or("(not a string)"),
                          gcode::dialect_names()));
+    } else if (k == "tool_table") {
+      const auto path = node.value<std::string>();
+      if (!path)
+        fail(fmt::format("{}:{}", src, node.source().begin.line), "tool-table", "tool_table must be a file name (a string)");
+      m.tool_table = (file.parent_path() / *path).lexically_normal().string();
+    } else if (k == "tool_table_units") {
+      const auto u = node.value<std::string>();
+      if (!u || (*u != "mm" && *u != "inch"))
+        fail(fmt::format("{}:{}", src, node.source().begin.line), "tool-table",
+             "tool_table_units must be \"mm\" or \"inch\"");
+      m.tool_table_mm_per_unit = *u == "inch" ? kInch : 1.0;
     } else if (k == "max_feed_mm_min") {
       m.max_feed_mm_s = number(node, k) / 60.0;
     } else if (k == "rapid_feed_mm_min") {
@@ -173,7 +184,7 @@ Machine read_machine_toml(const std::filesystem::path& file) {
       }
     } else {
       fail(fmt::format("{}:{}", src, node.source().begin.line), "unknown-field",
-           fmt::format("unknown field \"{}\" (expected name, dialect, subroutine_path, max_feed_mm_min, rapid_feed_mm_min, "
+           fmt::format("unknown field \"{}\" (expected name, dialect, subroutine_path, tool_table, tool_table_units, max_feed_mm_min, rapid_feed_mm_min, "
                        "chord_tolerance_mm, path_tolerance_mm, servo_period_s, axes)",
                        k));
     }
@@ -315,6 +326,16 @@ Machine read_linuxcnc_ini(const std::filesystem::path& file) {
     check_positive(src, "[RS274NGC] CENTER_ARC_RADIUS_TOLERANCE_INCH [in]", *v);
     m.arc_radius_tolerance_inch = *v;
   }
+  // relative to the INI, in the machine's units; a configuration copied without its table (the file
+  // is missing) runs as without one
+  if (const auto* t = get("EMCIO", "TOOL_TABLE")) {
+    const std::filesystem::path table = (file.parent_path() / trim(t->first)).lexically_normal();
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(table, ec)) {
+      m.tool_table = table.string();
+      m.tool_table_mm_per_unit = unit;
+    }
+  }
   if (const auto* d = get("KONTUR", "DIALECT")) {
     m.dialect = gcode::parse_dialect(d->first);
     if (!m.dialect)
@@ -343,6 +364,10 @@ std::string to_toml(const Machine& m) {
     for (std::size_t i = 0; i < m.subroutine_path.size(); ++i)
       out += fmt::format("{}\"{}\"", i ? ", " : "", m.subroutine_path[i]);
     out += "]\n";
+  }
+  if (!m.tool_table.empty()) {
+    out += fmt::format("tool_table = \"{}\"\n", m.tool_table);
+    if (m.tool_table_mm_per_unit != 1.0) out += "tool_table_units = \"inch\"\n";
   }
   for (const auto& a : m.axes) {
     const char* u = a.rotary ? "deg" : "mm";

@@ -20,9 +20,9 @@ const std::map<std::string, std::string>& expected_errors() {
   static const std::map<std::string, std::string> m = {
       {"linuxcnc-nurbs/G5_Curva_Stella_n1-1_G5.ngc", ":12:1: G2.2: unknown G code"},
       {"linuxcnc-tp/diagnostic/bad_spirals_1.ngc", ":14:1: G3: radius to the start 12.7 mm and to the end 28.3981 mm"},
+      {"linuxcnc-tp/diagnostic/bad_spirals_comp.ngc", ":13:1: G3: radius to the start 25.4 mm and to the end 15.24 mm"},
       {"linuxcnc-tp/diagnostic/bad_spirals_lathe.ngc", ":12:1: G3: radius to the start 12.7 mm and to the end 28.3981 mm"},
       {"linuxcnc-tp/diagnostic/spiral_aggressive.ngc", ":12:1: G2: radius to the start 5.08 mm and to the end 53.34 mm"},
-      {"linuxcnc-tp/diagnostic/bad_spirals_comp.ngc", ":10:1: G41: cutter radius compensation G41/G42 is not supported"},
       {"linuxcnc-tp/spindle/g33_blend.ngc", ":9:1: G33: spindle-synchronised motion"},
       {"linuxcnc-tp/spindle/g33_simple.ngc", ":4:1: G33: spindle-synchronised motion"},
       {"linuxcnc-tp/spindle/rigidtap_test.ngc", ":4:1: G33.1: spindle-synchronised motion"},

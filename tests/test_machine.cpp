@@ -145,5 +145,29 @@ TEST(Machine, IniErrors) {
   }
 }
 
+TEST(Machine, ToolTableFromTheIniAndTheToml) {
+  // LinuxCNC's [EMCIO] TOOL_TABLE, relative to the INI, in its LINEAR_UNITS
+  const fs::path tbl = write_temp("tool.tbl", "T1 D0.25 Z1\n");
+  const fs::path ini =
+      write_temp("tools.ini", "[TRAJ]\nCOORDINATES = X\nLINEAR_UNITS = inch\n[AXIS_X]\nMAX_VELOCITY = 1\nMAX_ACCELERATION = 10\n"
+                 "[EMCIO]\nTOOL_TABLE = " + tbl.filename().string() + "\n");
+  const Machine m = read_machine(ini);
+  EXPECT_EQ(m.tool_table, tbl.lexically_normal().string());
+  EXPECT_DOUBLE_EQ(m.tool_table_mm_per_unit, 25.4);
+  fs::remove(tbl);
+  // a configuration copied without its table runs as without one (the shared XYZ.ini names sim.tbl)
+  EXPECT_TRUE(read_machine(ini).tool_table.empty());
+  fs::remove(ini);
+  const fs::path toml = write_temp("tools.toml", "tool_table = \"t/mill.tbl\"\ntool_table_units = \"inch\"\n");
+  const Machine t = read_machine(toml);
+  EXPECT_EQ(t.tool_table, (toml.parent_path() / "t" / "mill.tbl").lexically_normal().string());
+  EXPECT_DOUBLE_EQ(t.tool_table_mm_per_unit, 25.4);
+  EXPECT_NE(to_toml(t).find("tool_table_units = \"inch\""), std::string::npos);
+  fs::remove(toml);
+  EXPECT_DOUBLE_EQ(default_machine().tool_table_mm_per_unit, 1.0);
+  EXPECT_TRUE(default_machine().tool_table.empty());
+  expect_error("tools_bad.toml", "tool_table_units = \"furlong\"\n", "tool-table", "tool_table_units");
+}
+
 }  // namespace
 }  // namespace kontur

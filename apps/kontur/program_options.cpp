@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 
 namespace kontur::app {
 
@@ -16,6 +17,9 @@ void add_program_read_options(CLI::App* cmd, ProgramReadOptions& options) {
                   "folder searched for a subroutine in a file of its own (LinuxCNC: o<name> call runs name.ngc); "
                   "repeat for more folders (default: the machine file's [RS274NGC] SUBROUTINE_PATH, else the "
                   "program's folder)");
+  cmd->add_option("--tool-table", options.tool_table,
+                  "the tool table (LinuxCNC's format: T1 P1 D6.0 Z10.0 ;comment) for G43 H, G41 / G42 D and the Fanuc "
+                  "family's H and D registers (default: the machine file's [EMCIO] TOOL_TABLE or tool_table, else none)");
   cmd->add_flag("--no-block-delete", options.no_block_delete, "read blocks starting with '/' (skipped by default)");
 }
 
@@ -24,6 +28,9 @@ gcode::ReaderOptions reader_options(const ProgramReadOptions& options, const std
   gcode::ReaderOptions ro;
   ro.block_delete = !options.no_block_delete;
   ro.subroutine_path = options.subroutine_path;
+  if (!options.tool_table.empty())
+    ro.tool_table = std::make_shared<const gcode::ToolTable>(
+        gcode::ToolTable::read(options.tool_table, machine ? machine->tool_table_mm_per_unit : 1.0));
   std::optional<gcode::Dialect> given;
   if (!options.dialect.empty()) {
     given = gcode::parse_dialect(options.dialect);

@@ -42,6 +42,11 @@ struct Machine {
   /// radii of a centre-format arc may differ (gcode::ReaderOptions); none: LinuxCNC's defaults.
   std::optional<double> arc_radius_tolerance_mm;
   std::optional<double> arc_radius_tolerance_inch;
+  /// The tool table file (LinuxCNC's format; TOML `tool_table`, INI `[EMCIO] TOOL_TABLE`, relative to
+  /// the machine file; empty: none) and its unit [mm per table unit] (the INI's LINEAR_UNITS: inch
+  /// 25.4; TOML `tool_table_units = "inch"`). `--tool-table` overrides the file.
+  std::string tool_table;
+  double tool_table_mm_per_unit = 1.0;
 
   /// The limits of axis `name` (X Y Z A B C U V W), or nullptr.
   [[nodiscard]] const AxisLimits* axis(char name) const noexcept;

@@ -49,6 +49,11 @@ struct DialectRules {
   /// only; in G91 both add to the current point's radius and angle. Else Sinumerik's AP= / RP=
   /// about the pole (G110-G112), in any plane.
   bool linuxcnc_polar = false;
+  /// The Fanuc family's offset registers: G10 L10 / L11 P n R set the length (geometry / wear) of
+  /// H n, G10 L12 / L13 the radius of D n (wear is added to the geometry); H n and D n read tool n of
+  /// the tool table (its length, half its diameter). Else LinuxCNC's G10 L10 / L11 (the tool entry
+  /// from the current position).
+  bool fanuc_offset_registers = false;
 };
 /// The rules of `dialect` (dialect_registry.cpp).
 [[nodiscard]] DialectRules rules_of(Dialect dialect) noexcept;

@@ -15,6 +15,8 @@ DialectRules rules_of(Dialect dialect) noexcept {
     case Dialect::fanuc:
     case Dialect::haas:
     case Dialect::mitsubishi:
+      r.fanuc_offset_registers = true;
+      [[fallthrough]];
     case Dialect::mach3:
       r.g80_restores_motion = true;
       r.motion_code_beside_nonmodal = true;

@@ -1,6 +1,7 @@
 // The executor's block, step by step in LinuxCNC's order, with one small function per modal group.
 #include "executor.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -43,6 +44,7 @@ void Executor::execute(const Words& words) {
   warn_ignored_m_codes(codes);
   if (codes.code(g_nonmodal) == 40) dwell(codes.column(g_nonmodal));
   set_plane(codes);
+  set_cutter_comp(codes);
   set_tool_length(codes);
   set_work_system(codes);
   set_path_control(codes);
@@ -157,7 +159,15 @@ void Executor::set_spindle_speed() {
 
 void Executor::set_tool(const BlockCodes& codes) {
   if (w->has('T') && w->get('T') < 0.0) fail(w->col('T'), "tool-range", "T: tool number must be >= 0");
-  if (codes.m_code(m_tool) == 6) modal.tool = w->has('T') ? static_cast<int>(w->get('T')) : modal.tool;
+  // a tool the given table lacks (T0: no tool)
+  if (w->has('T') && has_table_) {
+    const double t = w->get('T');
+    if (t != 0.0 && (t != std::floor(t) || t > 1e9 || tools_.find(static_cast<int>(t)) == nullptr))
+      fail(w->col('T'), "tool-not-in-table", fmt::format("T{}: the tool is not in the tool table", num(t)));
+  }
+  // T selects (prepares) the tool, M6 loads the selected one (LinuxCNC: "T2" then "M6" loads tool 2)
+  if (w->has('T')) selected_tool_ = static_cast<int>(std::min(w->get('T'), 1e9));
+  if (codes.m_code(m_tool) == 6) modal.tool = selected_tool_;
 }
 
 void Executor::set_spindle(const BlockCodes& codes) {
@@ -192,22 +202,121 @@ void Executor::warn_io_codes(const BlockCodes& codes) {
 
 void Executor::set_plane(const BlockCodes& codes) {
   const int g = codes.code(g_plane);
-  if (g >= 0) modal.plane = g == 170 ? Plane::xy : g == 180 ? Plane::zx : Plane::yz;
+  if (g < 0) return;
+  const Plane plane = g == 170 ? Plane::xy : g == 180 ? Plane::zx : Plane::yz;
+  // LinuxCNC: no change of plane under cutter compensation (a G40 of the same block turns it off first)
+  if (plane != modal.plane && modal.cutter_comp != CutterComp::off && codes.code(g_cutter) != 400)
+    fail(codes.column(g_plane), "plane-under-compensation",
+         fmt::format("{}: the plane cannot change while cutter radius compensation is on (G40 first)", g_name(g)));
+  modal.plane = plane;
+}
+
+int Executor::register_word(char letter, const char* what) const {
+  const double v = w->get(letter);
+  if (v < 0.0 || v != std::floor(v) || v > 1e9)
+    fail(w->col(letter), "tool-range", fmt::format("{}{}: {} must be an integer >= 0", letter, num(v), what));
+  return static_cast<int>(v);
+}
+
+double Executor::tool_length_of(int n, int column, const std::string& word) const {
+  if (n == 0) return 0.0;
+  const auto wear = h_wear_.find(n);
+  const double added = wear == h_wear_.end() ? 0.0 : wear->second;
+  if (const Tool* t = tools_.find(n)) return t->length_mm + added;
+  if (!has_table_) return added;  // no table: length 0 (recorded, as without one)
+  fail(column, "tool-not-in-table", fmt::format("{}: tool {} is not in the tool table", word, n));
+}
+
+double Executor::tool_radius_of(int n, int column, const std::string& word) const {
+  const auto wear = d_wear_.find(n);
+  const double added = wear == d_wear_.end() ? 0.0 : wear->second;
+  if (n == 0) return added;
+  const Tool* t = tools_.find(n);
+  if (t == nullptr && !has_table_)
+    fail(column, "no-tool-table",
+         fmt::format("{}: the radius of tool {} is unknown: no tool table given (--tool-table FILE or the INI's "
+                     "[EMCIO] TOOL_TABLE; G41.1 / G42.1 D give the diameter in the block)",
+                     word, n));
+  if (t == nullptr) fail(column, "tool-not-in-table", fmt::format("{}: tool {} is not in the tool table", word, n));
+  const double r = t->diameter_mm / 2.0 + added;
+  if (r < 0.0) fail(column, "negative-radius", fmt::format("{}: the radius of tool {} is negative ({} mm)", word, n, num(r)));
+  return r;
+}
+
+bool Executor::cutter_register_h(const BlockCodes& codes) const {
+  const int g = codes.code(g_cutter);
+  return rules_.fanuc_offset_registers && (g == 410 || g == 420) && !w->has('D') && w->has('H') &&
+         codes.code(g_tool_length) < 0;
+}
+
+void Executor::set_cutter_comp(const BlockCodes& codes) {
+  const int g = codes.code(g_cutter);
+  if (g < 0) return;
+  const int col = codes.column(g_cutter);
+  if (g == 400) {
+    // LinuxCNC: the move just after leaving compensation must be straight
+    arc_not_allowed_ = arc_not_allowed_ || modal.cutter_comp != CutterComp::off;
+    modal.cutter_comp = CutterComp::off;
+    modal.cutter_radius_mm = 0.0;
+    return;
+  }
+  const std::string name = g_name(g);
+  if (modal.cutter_comp != CutterComp::off)
+    fail(col, "compensation-on",
+         fmt::format("{}: cutter radius compensation is already on (LinuxCNC: G40 before switching it on again)", name));
+  if (modal.plane == Plane::yz)
+    fail(col, "compensation-plane", fmt::format("{}: cutter radius compensation only in the XY (G17) or XZ (G18) plane", name));
+  double radius = 0.0;
+  if (g == 411 || g == 421) {  // the diameter in the block, in program units
+    if (w->has('L'))
+      fail(w->col('L'), "unsupported", fmt::format("{} L: the lathe tool orientation is not supported by Kontur", name));
+    if (!w->has('D')) fail(col, "d-missing", fmt::format("{}: D (the cutter diameter) missing", name));
+    const double d = w->get('D');
+    if (d < 0.0) fail(w->col('D'), "negative-radius", fmt::format("{} D{}: the diameter must be >= 0", name, num(d)));
+    radius = d * scale() / 2.0;
+  } else if (w->has('D') || cutter_register_h(codes)) {
+    // the Fanuc family: an H beside G41 / G42 without D (Fanuc 0M's offset number) names the register
+    const char r = w->has('D') ? 'D' : 'H';
+    const int n = register_word(r, "the tool number");
+    radius = tool_radius_of(n, w->col(r), fmt::format("{} {}{}", name, r, n));
+  } else {
+    radius = tool_radius_of(modal.tool, col, fmt::format("{} (the current tool T{})", name, modal.tool));
+  }
+  modal.cutter_comp = g == 410 || g == 411 ? CutterComp::left : CutterComp::right;
+  modal.cutter_radius_mm = radius;
 }
 
 void Executor::set_tool_length(const BlockCodes& codes) {
   const int g = codes.code(g_tool_length);
   if (g < 0) return;
-  modal.tool_length_offset = g != 490;
-  if (g == 430) {
-    if (w->has('H')) {
-      const double h = w->get('H');
-      if (h < 0.0 || h != std::floor(h)) fail(w->col('H'), "tool-range", fmt::format("H{}: must be an integer >= 0", num(h)));
-      modal.tool_length_h = static_cast<int>(h);
-    } else {
-      modal.tool_length_h = modal.tool;
-    }
+  const int col = codes.column(g_tool_length);
+  if (g == 490) {
+    modal.tool_length_offset = false;
+    apply_tool_length(0.0);
+    return;
   }
+  modal.tool_length_offset = true;
+  if (g == 430) {
+    const int h = w->has('H') ? register_word('H', "the tool number") : modal.tool;
+    modal.tool_length_h = h;
+    apply_tool_length(tool_length_of(h, w->has('H') ? w->col('H') : col, fmt::format("G43 H{}", h)));
+  } else if (g == 431) {  // the length in the block (LinuxCNC's dynamic offset), program units
+    if (!w->has('Z')) fail(col, "axis-words", "G43.1: Z (the tool length) missing");
+    if (w->has('X') || w->has('Y') || extra_word() != 0)
+      fail(col, "axis-words", "G43.1: only Z (the tool length) is applied by Kontur");
+    apply_tool_length(w->get('Z') * scale());
+  } else {  // G43.2 H: adds another tool's length
+    if (!w->has('H')) fail(col, "h-missing", "G43.2: H (the tool whose length is added) missing");
+    const int h = register_word('H', "the tool number");
+    apply_tool_length(tool_length_ + tool_length_of(h, w->col('H'), fmt::format("G43.2 H{}", h)));
+  }
+}
+
+void Executor::apply_tool_length(double mm) {
+  const Vec3 m = to_machine(pos);
+  tool_length_ = mm;
+  modal.tool_length_mm = mm;
+  pos = to_program(m);
 }
 
 void Executor::set_work_system(const BlockCodes& codes) {
@@ -260,7 +369,11 @@ void Executor::reject_spline_end(const BlockCodes& codes) {
 void Executor::run_motion(const BlockCodes& codes, bool machine_coordinates) {
   const int nonmodal = codes.code(g_nonmodal);
   const int motion_word = codes.code(g_motion);
-  const bool nonmodal_uses_axes = nonmodal == 100 || nonmodal == 280 || nonmodal == 300 || nonmodal == 920;
+  const bool nonmodal_uses_axes = nonmodal == 100 || nonmodal == 280 || nonmodal == 300 || nonmodal == 920 ||
+                                  codes.code(g_tool_length) == 431;
+  if (codes.code(g_tool_length) == 431 && motion_word >= 0 && motion_word != motion_none)
+    fail(codes.column(g_tool_length), "axis-words",
+         fmt::format("G43.1 and {} in one block: both use the axis words", g_name(motion_word)));
   int motion = modal.motion_g10;
   if (motion_word >= 0) motion = motion_word;
   if (motion == 0 || motion == 10 || motion == 20 || motion == 30) group01_motion = motion;
@@ -290,7 +403,8 @@ void Executor::run_motion(const BlockCodes& codes, bool machine_coordinates) {
     }
   }
 
-  warn_unused_words(motion, nonmodal, codes.code(g_path), codes.code(g_tool_length), axes_for_motion || starts_motion);
+  warn_unused_words(motion, nonmodal, codes.code(g_path), codes.code(g_tool_length), axes_for_motion || starts_motion,
+                    codes.code(g_cutter));
 }
 
 void Executor::end_if_program_end(const BlockCodes& codes) {
@@ -301,7 +415,7 @@ void Executor::end_if_program_end(const BlockCodes& codes) {
   }
 }
 
-void Executor::warn_unused_words(int motion, int nonmodal, int path, int tool_length, bool moved) {
+void Executor::warn_unused_words(int motion, int nonmodal, int path, int tool_length, bool moved, int cutter) {
   std::string used = "FSTN";  // always meaningful
   auto add = [&](const char* letters) { used += letters; };
   const bool cycle = is_canned_cycle(motion);
@@ -317,7 +431,9 @@ void Executor::warn_unused_words(int motion, int nonmodal, int path, int tool_le
   if (nonmodal == 40) add("P");
   if (nonmodal == 100) add("LPR");
   if (path == 640) add("PQ");
-  if (tool_length == 430) add("H");
+  if (tool_length == 430 || tool_length == 432) add("H");
+  if (tool_length == 431) add("Z");
+  if (cutter == 410 || cutter == 420 || cutter == 411 || cutter == 421) add(rules_.fanuc_offset_registers ? "DH" : "D");
   for (int c = 0; c < 26; ++c) {
     const char letter = static_cast<char>('A' + c);
     if (letter == 'G' || letter == 'M' || !w->has(letter) || used.find(letter) != std::string::npos) continue;
@@ -341,6 +457,12 @@ void Executor::move(int motion, int col, bool machine_coordinates, int motion_wo
   if (is_canned_cycle(motion))
     refuse_extra_words(g_name(motion), "in a canned cycle (LinuxCNC moves them before the first hole; move them in "
                                        "a block of their own)");
+  if (arc_not_allowed_ && (motion == 20 || motion == 30))
+    fail(col, "arc-after-compensation",
+         fmt::format("{}: the move just after G40 (leaving cutter radius compensation) must be straight, not an arc "
+                     "(LinuxCNC's rule)",
+                     g_name(motion)));
+  arc_not_allowed_ = false;
   xto = extra_target(machine_coordinates);
   if (motion != 50 && motion != 51) prev_g5 = false;
   switch (motion) {

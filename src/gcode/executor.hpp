@@ -17,10 +17,12 @@
 #include <kontur/error.hpp>
 #include <kontur/gcode/block.hpp>
 #include <kontur/gcode/expression.hpp>
+#include <kontur/gcode/tool_table.hpp>
 #include <kontur/tolerances.hpp>
 
 #include <array>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <set>
 #include <string>
@@ -59,6 +61,13 @@ public:
   void set_arc_radius_tolerances(double mm, double inch) noexcept {
     arc_tolerance_mm_ = mm;
     arc_tolerance_inch_ = inch;
+  }
+  /// The tool table of the run (ReaderOptions::tool_table; nullptr: none given). Copied: G10 L1 /
+  /// L10 / L11 change the run's copy.
+  void set_tool_table(const ToolTable* table) {
+    if (table == nullptr) return;
+    tools_ = *table;
+    has_table_ = true;
   }
   /// Runs one block; its blocks are appended to blocks(). Throws InputError at the first error.
   /// `words` must stay valid until the next call (a spline or circle may refer to it).
@@ -113,6 +122,14 @@ private:
   ExtraAxes xpos{};
   ExtraAxes xto{};
   CoordinateFrames frames;
+  // tools: the run's table (G10 L1 writes it), whether one was given, the Fanuc family's wear
+  // registers (G10 L11 / L13) and the tool length offset applied along Z [mm]
+  ToolTable tools_;
+  bool has_table_ = false;
+  std::map<int, double> h_wear_, d_wear_;
+  double tool_length_ = 0.0;
+  int selected_tool_ = 0;  // the last T (M6 loads it)
+  bool arc_not_allowed_ = false;  // G40 ended compensation: the next move must be straight (LinuxCNC)
   double feed_mm_per_min = 0.0;
   bool ended_ = false;
   bool program_end_seen_ = false;
@@ -170,8 +187,17 @@ private:
     return SourceLocation{diag.name(), diag.line(), column > 0 ? column : 1, w->n_number};
   }
   Eigen::Matrix3d rotation() const { return frames.linear(modal.work_offset); }
-  Vec3 to_machine(const Vec3& p) const { return frames.to_machine(p, modal.work_offset); }
-  Vec3 to_program(const Vec3& m) const { return frames.to_program(m, modal.work_offset); }
+  // machine = the work coordinates' point + the tool length along Z (LinuxCNC's G43); the offset is
+  // only added when it is not 0, so that programs without one keep their exact numbers
+  Vec3 to_machine(const Vec3& p) const {
+    Vec3 m = frames.to_machine(p, modal.work_offset);
+    if (tool_length_ != 0.0) m.z() += tool_length_;
+    return m;
+  }
+  Vec3 to_program(const Vec3& m) const {
+    if (tool_length_ == 0.0) return frames.to_program(m, modal.work_offset);
+    return frames.to_program(Vec3(m.x(), m.y(), m.z() - tool_length_), modal.work_offset);
+  }
   ExtraAxes extra_to_machine(const ExtraAxes& p) const { return frames.extra_to_machine(p, modal.work_offset); }
   ExtraAxes extra_to_program(const ExtraAxes& m) const { return frames.extra_to_program(m, modal.work_offset); }
   // The unit factor of extra axis i: U V W are lengths (G20: inch), A B C angles [deg] (never scaled).
@@ -315,7 +341,19 @@ private:
   // M codes the tables do not know (machine-specific, user M100-M199): a warning once per code.
   void warn_ignored_m_codes(const BlockCodes& codes);
   void set_plane(const BlockCodes& codes);
+  void set_cutter_comp(const BlockCodes& codes);
+  // The Fanuc family's G41 / G42 H n without D (Fanuc 0M): H names the radius register.
+  bool cutter_register_h(const BlockCodes& codes) const;
   void set_tool_length(const BlockCodes& codes);
+  // The tool length offset becomes `mm`; the machine stays where it is (the program position changes).
+  void apply_tool_length(double mm);
+  // The length [mm] of tool / H register `n` (`word` names it in messages): 0 for n = 0, and when no
+  // table is given; not in a given table: an error.
+  double tool_length_of(int n, int column, const std::string& word) const;
+  // The radius [mm] of tool / D register `n` for G41 / G42; not in the table (or no table): an error.
+  double tool_radius_of(int n, int column, const std::string& word) const;
+  // The integer >= 0 of word `letter` (H, D, P of G10), or an error.
+  int register_word(char letter, const char* what) const;
   void set_work_system(const BlockCodes& codes);
   void set_path_control(const BlockCodes& codes);
   void set_distance_modes(const BlockCodes& codes);
@@ -327,7 +365,7 @@ private:
 
   // A word that no code of the block uses is ignored with a warning (a control would raise an
   // alarm for some; the specification asks for a warning).
-  void warn_unused_words(int motion, int nonmodal, int path, int tool_length, bool moved);
+  void warn_unused_words(int motion, int nonmodal, int path, int tool_length, bool moved, int cutter);
 
   void finish_spline_at_end();
   [[noreturn]] void fail_spline(const char* rule, const std::string& message) const {
@@ -341,6 +379,8 @@ private:
   void dwell(int col);
   // G10 L2 / L20 (work offsets), L1 / L10 / L11 (tool table, recorded only)
   void g10(int col);
+  // G10 L1 / L10 / L11 (LinuxCNC), L10..L13 (the Fanuc family's registers)
+  void g10_tool(int l, int col);
   // G28 / G30: rapid through the given point to the stored home position
   void home(int g, int col);
   // G28.1 / G30.1: store the current position as home

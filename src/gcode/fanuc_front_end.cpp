@@ -452,7 +452,9 @@ void FanucFrontEnd::dialect_codes(Words& w) {
       drop_g(i);
       continue;
     }
-    if (g == 100 && w.has('L') && w.get('L') >= 10.0 && w.get('L') <= 13.0) {  // G10 L10..L13: tool offsets
+    // G10 L10..L13: the offset registers; the executor writes them (DialectRules::fanuc_offset_registers),
+    // Mach3 has none
+    if (g == 100 && w.has('L') && w.get('L') >= 10.0 && w.get('L') <= 13.0 && dialect_ == Dialect::mach3) {
       diag.warn(col, fmt::format("{} L{}: tool offsets are not modelled: ignored", name, num(w.get('L'))));
       drop("LPRXYZQ");
       drop_g(i);

@@ -18,7 +18,6 @@ struct GCodeEntry {
 
 constexpr const char* spindle_sync = "spindle-synchronised motion (G33 threading, G33.1 rigid tapping)";
 constexpr const char* g85_g89 = "canned cycles G85-G89 (only G73, G81, G82 and G83 are expanded)";
-constexpr const char* cutter_comp = "cutter radius compensation G41/G42";
 constexpr const char* probing = "probing G38.x";
 constexpr const char* uvw_planes = "the UVW planes G17.1/G18.1/G19.1";
 
@@ -33,8 +32,8 @@ constexpr GCodeEntry g_codes[] = {
     {200, g_units},       {210, g_units},      {280, g_nonmodal},    {281, g_nonmodal},    {300, g_nonmodal},
     {301, g_nonmodal},    {330, -2, spindle_sync}, {331, -2, spindle_sync},
     {382, -2, probing},   {383, -2, probing},  {384, -2, probing},   {385, -2, probing},
-    {400, g_cutter},      {410, -2, cutter_comp}, {411, -2, cutter_comp}, {420, -2, cutter_comp},
-    {421, -2, cutter_comp}, {430, g_tool_length}, {431, g_tool_length}, {432, g_tool_length}, {490, g_tool_length},
+    {400, g_cutter},      {410, g_cutter},     {411, g_cutter},     {420, g_cutter},
+    {421, g_cutter},      {430, g_tool_length}, {431, g_tool_length}, {432, g_tool_length}, {490, g_tool_length},
     {530, g_nonmodal},    {540, g_coordinate}, {550, g_coordinate},  {560, g_coordinate},  {570, g_coordinate},
     {580, g_coordinate},  {590, g_coordinate}, {591, g_coordinate},  {592, g_coordinate},  {593, g_coordinate},
     {610, g_path},        {611, g_path},       {640, g_path},        {730, g_motion},

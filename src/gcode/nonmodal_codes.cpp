@@ -33,8 +33,8 @@ void Executor::dwell(int col) {
 void Executor::g10(int col) {
   if (!w->has('L')) fail(col, "g10", "G10: L missing (L2 or L20 set a work offset)");
   const double l = w->get('L');
-  if (l == 1.0 || l == 10.0 || l == 11.0) {
-    warn(col, fmt::format("G10 L{}: tool table entries are ignored (tool offsets are recorded, not applied)", num(l)));
+  if (l == 1.0 || l == 10.0 || l == 11.0 || (rules_.fanuc_offset_registers && (l == 12.0 || l == 13.0))) {
+    g10_tool(static_cast<int>(l), col);
     return;
   }
   if (l != 2.0 && l != 20.0) fail(w->col('L'), "g10", fmt::format("G10 L{}: unknown (L2 or L20 set a work offset)", num(l)));
@@ -74,6 +74,50 @@ void Executor::g10(int col) {
     pos = to_program(m);
     xpos = xto = extra_to_program(xm);
   }
+}
+
+void Executor::g10_tool(int l, int col) {
+  const std::string name = fmt::format("G10 L{}", l);
+  if (!w->has('P')) fail(col, "g10", fmt::format("{}: P (the tool number) missing", name));
+  const int n = register_word('P', "the tool number");
+  Tool tool = tools_.find(n) != nullptr ? *tools_.find(n) : Tool{n, 0, 0.0, 0.0};
+  if (rules_.fanuc_offset_registers && l >= 10) {
+    // the Fanuc family: R is the register's value (G91: added to it); L10 / L11 H (length), L12 /
+    // L13 D (radius), geometry / wear
+    if (!w->has('R')) fail(col, "g10", fmt::format("{}: R (the offset value) missing", name));
+    const double v = w->get('R') * scale();
+    const bool add = modal.distance == DistanceMode::incremental;
+    if (l == 10) tool.length_mm = (add ? tool.length_mm : 0.0) + v;
+    if (l == 12) {
+      const double r = (add ? tool.diameter_mm / 2.0 : 0.0) + v;
+      if (r < 0.0) fail(w->col('R'), "negative-radius", fmt::format("{} R{}: the radius must be >= 0", name, num(w->get('R'))));
+      tool.diameter_mm = 2.0 * r;
+    }
+    if (l == 11 || l == 13) {
+      double& wear = (l == 11 ? h_wear_ : d_wear_)[n];
+      wear = (add ? wear : 0.0) + v;
+    }
+    tools_.set(tool);
+    return;
+  }
+  if (w->has('R')) {
+    if (w->get('R') < 0.0) fail(w->col('R'), "negative-radius", fmt::format("{} R{}: the radius must be >= 0", name, num(w->get('R'))));
+    tool.diameter_mm = 2.0 * w->get('R') * scale();
+  }
+  if (w->has('Z')) {
+    const double z = w->get('Z') * scale();
+    if (l == 1) {
+      tool.length_mm = z;
+    } else {
+      // the length that makes the current machine position have Z = z in the program coordinates
+      // (L10: with the current work offsets; L11: without them, as in G59.3 without G92)
+      const Vec3 m = to_machine(pos);
+      Vec3 p = pos;
+      p.z() = z;
+      tool.length_mm = l == 10 ? m.z() - frames.to_machine(p, modal.work_offset).z() : m.z() - z;
+    }
+  }
+  tools_.set(tool);
 }
 
 void Executor::home(int g, int col) {

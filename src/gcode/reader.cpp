@@ -40,6 +40,7 @@ struct Reader::Impl {
     executor.set_rules(detail::rules_of(dialect.dialect));
     executor.set_arc_radius_tolerances(opt.arc_radius_tolerance_mm.value_or(tolerances::gcode_arc_radius_absolute_mm),
                                        opt.arc_radius_tolerance_inch.value_or(tolerances::gcode_arc_radius_absolute_inch));
+    executor.set_tool_table(opt.tool_table.get());
     front_end = detail::make_front_end(dialect.dialect,
                                        detail::DialectServices{dialect.dialect, input, params, diag, opt, executor, &executor});
   }

@@ -44,6 +44,9 @@ gcode::ReaderOptions Pipeline::reader_options() const {
   if (o.subroutine_path.empty()) o.subroutine_path = machine_.subroutine_path;
   if (!o.arc_radius_tolerance_mm) o.arc_radius_tolerance_mm = machine_.arc_radius_tolerance_mm;
   if (!o.arc_radius_tolerance_inch) o.arc_radius_tolerance_inch = machine_.arc_radius_tolerance_inch;
+  if (!o.tool_table && !machine_.tool_table.empty())  // the machine file's, in its linear units
+    o.tool_table = std::make_shared<const gcode::ToolTable>(
+        gcode::ToolTable::read(machine_.tool_table, machine_.tool_table_mm_per_unit));
   return o;
 }
 

@@ -199,3 +199,19 @@ kontur_cli_case(verify_missing_setpoints 1 "no-such\\.csv: cannot open the setpo
 # Setpoints and summary cannot both go to stdout: refused before any work.
 kontur_cli_case(run_summary_stdout_needs_output_file 2 "--summary - needs -o FILE" run examples/programs/square_arc.ngc
                 --summary -)
+
+# the tool table (docs/gcode.md, "Tool table and compensation")
+kontur_cli_case(check_tool_table 0 "rapid +25\\.000000 mm" check tests/data/gcode/good/tool_length.ngc
+                --tool-table tests/data/tools/mill.tbl)
+kontur_cli_case(check_compensation_without_tool_table 1
+                "cutter_compensation\\.ngc:4:5: G41 D1: the radius of tool 1 is unknown: no tool table given"
+                check tests/data/gcode/good/cutter_compensation.ngc)
+kontur_cli_case(check_compensation 0 "blocks +2 rapid, 3 line" check tests/data/gcode/good/cutter_compensation.ngc
+                --tool-table tests/data/tools/mill.tbl)
+kontur_cli_case(check_tool_table_twice 1 "twice\\.tbl:2: tool-twice: T1: the tool is in the table twice" check
+                tests/data/gcode/good/tool_length.ngc --tool-table tests/data/tools/twice.tbl)
+kontur_cli_case(check_tool_table_missing 1 "no-such\\.tbl: tool-table: cannot open the tool table" check
+                tests/data/gcode/good/tool_length.ngc --tool-table no-such.tbl)
+kontur_cli_case(run_compensation_not_applied_yet 1
+                "cutter_compensation\\.ngc:5:1: cutter radius compensation \\(G41, radius 3 mm\\) is read but not applied"
+                run tests/data/gcode/good/cutter_compensation.ngc --tool-table tests/data/tools/mill.tbl --quiet)

@@ -53,8 +53,8 @@ struct ModalState {
   FeedMode feed_mode = FeedMode::units_per_minute;       ///< G94 / G93
   int motion_g10 = 0;            ///< active group-1 code times 10 (0 = G0, 10 = G1, 62 = G6.2, 800 = G80)
   int work_offset = 1;           ///< 1 = G54 ... 6 = G59, 7..9 = G59.1 .. G59.3
-  bool tool_length_offset = false;  ///< G43 active (recorded, not applied)
-  int tool_length_h = 0;         ///< H of the last G43
+  bool tool_length_offset = false;  ///< G43 / G43.1 / G43.2 active (the offset: tool_length_mm)
+  int tool_length_h = 0;         ///< H of the last G43 (no H: the current tool)
   int tool = 0;                  ///< T of the last M6
   double spindle_rpm = 0.0;      ///< S [1/min]
   SpindleState spindle = SpindleState::off;  ///< M3 / M4 / M5

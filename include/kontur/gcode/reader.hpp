@@ -12,6 +12,7 @@
 // hands the blocks out. A program with an error so yields no block to later stages.
 #include <kontur/gcode/block.hpp>
 #include <kontur/gcode/dialect.hpp>
+#include <kontur/gcode/tool_table.hpp>
 #include <kontur/tolerances.hpp>
 
 #include <array>
@@ -48,6 +49,10 @@ struct ReaderOptions {
   /// tolerances::gcode_arc_radius_absolute_mm / _inch, LinuxCNC's defaults.
   std::optional<double> arc_radius_tolerance_mm;
   std::optional<double> arc_radius_tolerance_inch;
+  /// The tool table (lengths of G43 H, diameters of G41 D / G42 D; the Fanuc family's H and D
+  /// registers); none: G43 applies length 0 (recorded) and G41 / G42 with a tool number are refused
+  /// (G41.1 / G42.1 give the diameter in the block). G10 L1 / L10 / L11 change the run's copy.
+  std::shared_ptr<const ToolTable> tool_table;
 };
 
 /// Reads a program and hands out its blocks one by one.
