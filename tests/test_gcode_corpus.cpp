@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <kontur/error.hpp>
 #include <kontur/gcode/reader.hpp>
+#include <kontur/gcode/tool_table.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/pipeline.hpp>
 
@@ -68,6 +69,9 @@ TEST_P(Corpus, ReadInItsDialectAsExpectedAndRunsWithinEveryLimit) {
       << p.file << ": " << detect_dialect_of_file(path).reason;
   ReaderOptions options;
   options.dialect = dialect;
+  // The corpus's tool table: wear-sized cutters for its G41 / G42 programs (tools.tbl says why).
+  static const auto tools = std::make_shared<const ToolTable>(ToolTable::read(corpus_dir / "tools.tbl"));
+  options.tool_table = tools;
   try {
     const ProgramSummary s = check_program(path, options);
     ASSERT_EQ(p.expected, "read") << p.file << ": read, but expected the refusal " << p.refusal;

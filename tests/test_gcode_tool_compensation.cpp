@@ -3,6 +3,8 @@
 // (G10 L10..L13), and the cutter compensation modal state the compensation stage reads (G41 / G42 D,
 // G41.1 / G42.1 D, G40) with its refusals.
 #include <gtest/gtest.h>
+#include <kontur/geometry/helix_arc.hpp>
+#include <variant>
 #include <kontur/error.hpp>
 #include <kontur/gcode/reader.hpp>
 #include <kontur/gcode/tool_table.hpp>
@@ -115,14 +117,19 @@ TEST(ToolLength, ToolsNotInTheTableAreRefused) {
   EXPECT_EQ(error_of("G21\nG41 D3\n", t), "p.ngc:2:5: G41 D3: tool 3 is not in the tool table");
 }
 
-TEST(CutterCompensation, BlocksCarryTheSideAndTheRadiusAndTheProgrammedContour) {
+TEST(CutterCompensation, BlocksCarryTheSideAndTheRadiusAndAreOffset) {
   const auto b = read("G21 G17 F100\nT1 M6\nG41 D1\nG1 X10\nG2 X20 R5\nG40\nG1 X0\nG42.1 D4\nG1 Y10\nG40 G0 X0 Y0\nM2\n",
                       table("T1 D6 Z0\n"));
   ASSERT_EQ(b.size(), 5u);
   EXPECT_EQ(b[0].modal.cutter_comp, CutterComp::left);
   EXPECT_DOUBLE_EQ(b[0].modal.cutter_radius_mm, 3.0);
-  EXPECT_DOUBLE_EQ(b[0].end.x(), 10.0);  // not offset
-  EXPECT_DOUBLE_EQ(b[0].end.y(), 0.0);
+  // Offset by the reader's compensation stage: the entry line ends where it meets the arc's offset
+  // (the G2 of radius 5 about (15, 0) grows to 8 on the left of a clockwise arc).
+  EXPECT_EQ(b[0].start, Vec3(0, 0, 0));
+  EXPECT_NEAR((b[0].end - Vec3(15, 0, 0)).norm(), 8.0, 1e-9);
+  ASSERT_TRUE(std::holds_alternative<HelixArc>(b[1].geometry));
+  EXPECT_NEAR(std::get<HelixArc>(b[1].geometry).radius_mm(), 8.0, 1e-12);
+  EXPECT_NEAR((b[1].end - Vec3(23, 0, 0)).norm(), 0.0, 1e-9);  // the exit leaves from the offset end
   EXPECT_EQ(b[1].modal.cutter_comp, CutterComp::left);
   EXPECT_EQ(b[2].modal.cutter_comp, CutterComp::off);
   EXPECT_DOUBLE_EQ(b[2].modal.cutter_radius_mm, 0.0);

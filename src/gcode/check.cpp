@@ -34,16 +34,7 @@ DialectChoice for_each_block(const std::string& path, const std::function<void(c
   {
     Reader validate(path, options);  // pass 1: the whole program, no block kept
     Block b;
-    while (validate.next(b)) {
-      // The reader hands out the programmed contour under G41 / G42 (ModalState::cutter_comp); until
-      // the compensation stage offsets it, a path of a cutter with a radius is refused, not run wrong.
-      if (b.modal.cutter_comp != CutterComp::off && b.modal.cutter_radius_mm > 0.0 && b.type != BlockType::dwell)
-        throw InputError("compensation-not-applied",
-                         fmt::format("{}:{}:{}: cutter radius compensation ({}, radius {} mm) is read but not applied "
-                                     "to the path yet (the offset contour is the compensation stage's, issue 15); "
-                                     "`kontur check` shows the blocks",
-                                     *b.location.file, b.location.line, b.location.column,
-                                     b.modal.cutter_comp == CutterComp::left ? "G41" : "G42", b.modal.cutter_radius_mm));
+    while (validate.next(b)) {  // every block, compensated: an error anywhere stops here
     }
     again.dialect = validate.dialect().dialect;
     again.dialect_reason = validate.dialect().reason;

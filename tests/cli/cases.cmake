@@ -212,6 +212,5 @@ kontur_cli_case(check_tool_table_twice 1 "twice\\.tbl:2: tool-twice: T1: the too
                 tests/data/gcode/good/tool_length.ngc --tool-table tests/data/tools/twice.tbl)
 kontur_cli_case(check_tool_table_missing 1 "no-such\\.tbl: tool-table: cannot open the tool table" check
                 tests/data/gcode/good/tool_length.ngc --tool-table no-such.tbl)
-kontur_cli_case(run_compensation_not_applied_yet 1
-                "cutter_compensation\\.ngc:5:1: cutter radius compensation \\(G41, radius 3 mm\\) is read but not applied"
-                run tests/data/gcode/good/cutter_compensation.ngc --tool-table tests/data/tools/mill.tbl --quiet)
+kontur_cli_case(run_cutter_compensation 0 "\"passed\": true" run tests/data/gcode/good/cutter_compensation.ngc
+                --tool-table tests/data/tools/mill.tbl -o /tmp/kontur_cli_comp.csv --summary -)

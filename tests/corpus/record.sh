@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Writes the columns `detected`, `refusal` and `blocks` of tests/data/corpus/expected.tsv anew from
 # a kontur binary: the dialect detected from each program; for programs not expected to read, the
-# message they stop with (without the directory); for those that read, their number of blocks.
+# message they stop with (without the directory); for those that read, their number of blocks. Every
+# program is read with the corpus's tool table (tools.tbl), as the test reads it.
 # Review the diff before committing it.
 # Usage: tests/corpus/record.sh build/bin/kontur
 set -euo pipefail
@@ -20,10 +21,10 @@ trap 'rm -f "$out"' EXIT
     fi
     refusal="" blocks=""
     if [ "$expected" = "read" ]; then
-      blocks="$("$kontur" check --quiet --dialect "$dialect" "$file" 2>/dev/null |
+      blocks="$("$kontur" check --quiet --dialect "$dialect" --tool-table tools.tbl "$file" 2>/dev/null |
                 sed -n 's/.*: valid, [0-9]* lines, \([0-9]*\) blocks$/\1/p')" || true
     else
-      refusal="$("$kontur" check --quiet --dialect "$dialect" "$file" 2>&1 >/dev/null | grep -v '^kontur: dialect:' |
+      refusal="$("$kontur" check --quiet --dialect "$dialect" --tool-table tools.tbl "$file" 2>&1 >/dev/null | grep -v '^kontur: dialect:' |
                  grep '^kontur: error: ' | head -1 | sed 's/^kontur: error: //')" || true
     fi
     printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$file" "$dialect" "$expected" "$feature" "$detected" "$refusal" \
