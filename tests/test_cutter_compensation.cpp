@@ -270,3 +270,61 @@ TEST(CutterCompensation, GougesAreRefusedWithTheLine) {
 
 }  // namespace
 }  // namespace kontur::gcode
+
+#include <filesystem>
+#include <fstream>
+#include <kontur/pipeline.hpp>
+#include <sstream>
+
+namespace kontur::gcode {
+namespace {
+
+// The setpoints of a run (G-code through the whole pipeline) against OpenCASCADE's offset: a
+// pocket of lines and arcs cut inside with G41.1 (a 4 mm cutter), every setpoint of its inner
+// moves on the offset to 1e-6 mm and none closer to the programmed contour than the radius.
+TEST(CutterCompensation, SetpointsOfARunLieOnTheOffsetOfTheProgrammedContour) {
+  const std::vector<Edge> pocket = {{{0, 0, 0}, {40, 0, 0}},
+                                    {{40, 0, 0}, {50, 10, 0}, true, {40 + 10 * std::sqrt(0.5), 10 - 10 * std::sqrt(0.5), 0}},
+                                    {{50, 10, 0}, {50, 30, 0}},
+                                    {{50, 30, 0}, {20, 30, 0}},
+                                    {{20, 30, 0}, {20, 15, 0}},
+                                    {{20, 15, 0}, {0, 15, 0}},
+                                    {{0, 15, 0}, {0, 0, 0}}};
+  std::ostringstream g;
+  g << "G21 G90 G17 F1200\nG0 X25 Y8 Z0\nG41.1 D4\n";
+  g << "G1 X0 Y0\n";  // the entry, to the first corner
+  for (const Edge& e : pocket) {
+    if (!e.arc) {
+      g << "G1 X" << e.to.x() << " Y" << e.to.y() << "\n";
+    } else {  // a counter-clockwise quarter around (40, 10)
+      g << "G3 X" << e.to.x() << " Y" << e.to.y() << " I0 J10\n";
+    }
+  }
+  g << "G40 G1 X25 Y8\nM2\n";
+  const auto path = std::filesystem::temp_directory_path() / "kontur_comp_pocket.ngc";
+  std::ofstream(path) << g.str();
+  std::vector<trajectory::Setpoint> sp;
+  PipelineEvents events;
+  events.setpoint = [&](const trajectory::Setpoint& s) { sp.push_back(s); };
+  Pipeline pipeline(default_machine());
+  const RunResult r = pipeline.run(path.string(), events);
+  EXPECT_TRUE(r.passed) << r.summary_json.substr(0, 800);
+  const TopoDS_Wire programmed = occt_wire(pocket);
+  BRepOffsetAPI_MakeOffset mo(programmed, GeomAbs_Arc);
+  mo.Perform(-2.0);  // inside
+  ASSERT_TRUE(mo.IsDone());
+  int measured = 0;
+  // lines 5 .. 10 of the program are the pocket's inner moves (4: its first, 11: its last)
+  for (std::size_t k = 0; k < sp.size(); k += 7) {
+    if (sp[k].source_line < 6 || sp[k].source_line > 10) continue;
+    const Vec3 p(sp[k].position[0], sp[k].position[1], sp[k].position[2]);
+    EXPECT_LE(distance(mo.Shape(), p), 1e-6) << "line " << sp[k].source_line << " at " << p.transpose();
+    EXPECT_GE(distance(programmed, p), 2.0 - 1e-6) << "line " << sp[k].source_line << " at " << p.transpose();
+    ++measured;
+  }
+  EXPECT_GT(measured, 100);
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace kontur::gcode
