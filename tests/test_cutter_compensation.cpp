@@ -226,32 +226,33 @@ TEST(CutterCompensation, SeededRandomClosedContoursMatchTheOffsetOnBothSides) {
   }
 }
 
+// `push` must throw InputError with `rule` and a message containing `fragment`.
+template <class Push>
+void expect_refused(Push push, const std::string& rule, const std::string& fragment) {
+  try {
+    push();
+    FAIL() << "accepted";
+  } catch (const InputError& err) {
+    EXPECT_EQ(err.rule(), rule);
+    EXPECT_NE(std::string(err.what()).find(fragment), std::string::npos) << err.what();
+  }
+}
+
 TEST(CutterCompensation, GougesAreRefusedWithTheLine) {
   detail::CutterCompensation comp;
   std::vector<Block> out;
   // A concave arc (G41 inside a counter-clockwise circle of 2 mm) with a cutter of 3 mm.
   comp.push(line_block({10, 0, 0}, {2, 0, 0}, 1, CutterComp::left, 3.0), out);
   const Edge e{{2, 0, 0}, {-2, 0, 0}, true, {0, 2, 0}};
-  try {
-    comp.push(arc_block(e, 2, CutterComp::left, 3.0), out);
-    FAIL() << "accepted";
-  } catch (const InputError& err) {
-    EXPECT_EQ(err.rule(), "cutter-gouge");
-    EXPECT_NE(std::string(err.what()).find(":2:"), std::string::npos) << err.what();
-  }
+  expect_refused([&] { comp.push(arc_block(e, 2, CutterComp::left, 3.0), out); }, "cutter-gouge", ":2:");
   // A concave corner after a move shorter than the cutter radius: the offset would reverse.
   detail::CutterCompensation c2;
   out.clear();
   c2.push(line_block({-20, -20, 0}, {0, 0, 0}, 1, CutterComp::left, 2.0), out);
   c2.push(line_block({0, 0, 0}, {10, 0, 0}, 2, CutterComp::left, 2.0), out);
-  try {
-    // a left turn (concave for G41) onto a move of 1 mm: its offset (x = 8) would end before it starts
-    c2.push(line_block({10, 0, 0}, {10, 1, 0}, 3, CutterComp::left, 2.0), out);
-    FAIL() << "accepted";
-  } catch (const InputError& err) {
-    EXPECT_EQ(err.rule(), "cutter-gouge");
-    EXPECT_NE(std::string(err.what()).find("lines 2 and 3"), std::string::npos) << err.what();
-  }
+  // a left turn (concave for G41) onto a move of 1 mm: its offset (x = 8) would end before it starts
+  expect_refused([&] { c2.push(line_block({10, 0, 0}, {10, 1, 0}, 3, CutterComp::left, 2.0), out); }, "cutter-gouge",
+                 "lines 2 and 3");
   // A NURBS under compensation: refused, naming the block.
   detail::CutterCompensation c3;
   out.clear();
@@ -259,13 +260,7 @@ TEST(CutterCompensation, GougesAreRefusedWithTheLine) {
   Block nurbs = line_block({0, 0, 0}, {10, 0, 0}, 2, CutterComp::left, 2.0);
   nurbs.type = BlockType::nurbs;
   nurbs.geometry.emplace<NurbsCurve>(NurbsData{1, {0, 0, 1, 1}, {Vec3(0, 0, 0), Vec3(10, 0, 0)}, {}});
-  try {
-    c3.push(nurbs, out);
-    FAIL() << "accepted";
-  } catch (const InputError& err) {
-    EXPECT_EQ(err.rule(), "cutter-compensation");
-    EXPECT_NE(std::string(err.what()).find("nurbs"), std::string::npos) << err.what();
-  }
+  expect_refused([&] { c3.push(nurbs, out); }, "cutter-compensation", "nurbs");
 }
 
 }  // namespace

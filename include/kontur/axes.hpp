@@ -34,6 +34,16 @@ using ExtraAxes = std::array<double, extra_axis_count>;
   return -1;
 }
 
+/// The extra axes a fraction `f` of the way from `from` to `to` (linear): exactly `from` at f <= 0 and
+/// `to` at f >= 1.
+[[nodiscard]] inline ExtraAxes extra_between(const ExtraAxes& from, const ExtraAxes& to, double f) noexcept {
+  if (!(f > 0.0)) return from;
+  if (f >= 1.0) return to;
+  ExtraAxes x;
+  for (std::size_t i = 0; i < x.size(); ++i) x[i] = from[i] + f * (to[i] - from[i]);
+  return x;
+}
+
 /// Linear axes move in [mm], rotary axes turn in [deg].
 enum class AxisKind { linear, rotary };
 

@@ -35,17 +35,9 @@ Vec3 CutterCompensation::Element::point(double phi) const {
   return frame.centre + rise * phi * frame.normal + r * (std::cos(phi) * frame.e1 + std::sin(phi) * frame.e2);
 }
 
-Vec3 CutterCompensation::Element::start_tangent() const {
+Vec3 CutterCompensation::Element::tangent(double phi) const {
   if (!arc) return (b - a).normalized();
-  const double phi = phi0, r = r0 + dr * phi;
-  const Vec3 rho = std::cos(phi) * frame.e1 + std::sin(phi) * frame.e2;
-  const Vec3 d = dr * rho + r * (-std::sin(phi) * frame.e1 + std::cos(phi) * frame.e2) + rise * frame.normal;
-  return d.normalized();
-}
-
-Vec3 CutterCompensation::Element::end_tangent() const {
-  if (!arc) return (b - a).normalized();
-  const double phi = phi1, r = r0 + dr * phi;
+  const double r = r0 + dr * phi;
   const Vec3 rho = std::cos(phi) * frame.e1 + std::sin(phi) * frame.e2;
   const Vec3 d = dr * rho + r * (-std::sin(phi) * frame.e1 + std::cos(phi) * frame.e2) + rise * frame.normal;
   return d.normalized();
@@ -101,7 +93,7 @@ CutterCompensation::Element CutterCompensation::offset(const Block& b, double si
 void CutterCompensation::join(Element& next, std::optional<Element>& corner) {
   Element& prev = *held_;
   const Vec3 V = prev.vertex_end;
-  const Vec3 t1 = in_plane(prev.end_tangent()).normalized(), t2 = in_plane(next.start_tangent()).normalized();
+  const Vec3 t1 = in_plane(prev.tangent(prev.phi1)).normalized(), t2 = in_plane(next.tangent(next.phi0)).normalized();
   const Vec3 a1 = prev.end(), b0 = next.start();
   if (in_plane(b0 - a1).norm() <= tolerances::cutter_comp_same_point_mm) return;  // tangent: the offsets meet
   const double cross = n_.dot(t1.cross(t2));
@@ -284,17 +276,13 @@ void CutterCompensation::push(Block b, std::vector<Block>& out) {
     return;
   }
   // Compensation on for this block.
-  if (geometric && !line && !std::holds_alternative<HelixArc>(b.geometry))
+  // Lines and arcs in the plane only (a 3-D circle is a HelixArc too, but not a G2 / G3).
+  if (geometric && b.type != BlockType::line && b.type != BlockType::rapid && b.type != BlockType::arc &&
+      b.type != BlockType::helix)
     fail(b, "cutter-compensation",
          fmt::format("{}: cutter radius compensation (G41 / G42) of a {} is not supported: turn it off (G40) before "
                      "the block",
                      to_string(b.type), to_string(b.type)));
-  if (geometric && std::holds_alternative<HelixArc>(b.geometry) &&
-      (b.type == BlockType::circle_3d || b.type == BlockType::conic))
-    fail(b, "cutter-compensation",
-         fmt::format("{}: cutter radius compensation (G41 / G42) of a 3-D circle is not supported: turn it off (G40) "
-                     "before the block",
-                     to_string(b.type)));
   const bool in_plane_motion = [&] {
     if (!geometric) return false;
     if (!line) return true;

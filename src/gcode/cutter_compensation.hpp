@@ -44,8 +44,7 @@ class CutterCompensation {
     [[nodiscard]] Vec3 point(double phi) const;
     [[nodiscard]] Vec3 start() const { return arc ? point(phi0) : a; }
     [[nodiscard]] Vec3 end() const { return arc ? point(phi1) : b; }
-    [[nodiscard]] Vec3 start_tangent() const;  // unit, in space
-    [[nodiscard]] Vec3 end_tangent() const;
+    [[nodiscard]] Vec3 tangent(double phi) const;  // unit, in space, at angle phi (a line: anywhere)
   };
 
   [[noreturn]] void fail(const Block& b, const char* rule, const std::string& message) const;

@@ -31,23 +31,23 @@ void Executor::programmable_frame() {
   ExtraAxes xt = frames.programmable_extra();
   Eigen::Matrix3d a = frames.programmable_linear();
   Vec3 t = frames.programmable_translation();
-  const bool any = has_axes() || w->frame_has_rpl;
   auto axis_value = [&](int axis) {
     const char letter = static_cast<char>('X' + axis);
     return w->has(letter) ? w->get(letter) : 0.0;
   };
+  // TRANS / ROT / SCALE / MIRROR replace the programmable frame; ATRANS / AROT / ASCALE / AMIRROR add to it.
+  const bool replaces = op == FrameOp::trans || op == FrameOp::rot || op == FrameOp::scale || op == FrameOp::mirror;
+  if (replaces) {
+    a.setIdentity();
+    t.setZero();
+    xt.fill(0.0);
+  }
+  if (w->frame_has_rpl && op != FrameOp::rot && op != FrameOp::arot)
+    fail(col, "frame-words", fmt::format("{}: RPL= belongs to ROT / AROT", word));
   switch (op) {
     case FrameOp::trans:
     case FrameOp::atrans: {
-      if (w->frame_has_rpl) fail(col, "frame-words", fmt::format("{}: RPL= belongs to ROT / AROT", word));
-      const Vec3 v(axis_value(0) * scale(), axis_value(1) * scale(), axis_value(2) * scale());
-      if (op == FrameOp::trans) {
-        a.setIdentity();
-        t = v;
-        xt.fill(0.0);
-      } else {
-        t += a * v;
-      }
+      t += a * Vec3(axis_value(0) * scale(), axis_value(1) * scale(), axis_value(2) * scale());
       for (int i = 0; i < extra_axis_count; ++i)
         if (w->has(extra_axis_letters[i]))
           xt[static_cast<std::size_t>(i)] += w->get(extra_axis_letters[i]) * extra_scale(i);
@@ -66,18 +66,11 @@ void Executor::programmable_frame() {
              Eigen::AngleAxisd(axis_value(0) * d, Vec3::UnitX()))
                 .toRotationMatrix();
       }
-      if (op == FrameOp::rot) {
-        a = r;
-        t.setZero();
-        xt.fill(0.0);
-      } else {
-        a = a * r;
-      }
+      a = a * r;
       break;
     }
     case FrameOp::scale:
     case FrameOp::ascale: {  // factors per axis (1 where not given); an arc needs equal ones in its plane
-      if (w->frame_has_rpl) fail(col, "frame-words", fmt::format("{}: RPL= belongs to ROT / AROT", word));
       Eigen::Matrix3d m = Eigen::Matrix3d::Identity();
       for (int axis = 0; axis < 3; ++axis) {
         const char letter = static_cast<char>('X' + axis);
@@ -88,37 +81,19 @@ void Executor::programmable_frame() {
                fmt::format("{} {}{}: a scale factor must not be 0", word, letter, num(f)));
         m(axis, axis) = f;
       }
-      if (op == FrameOp::scale) {
-        a = m;
-        t.setZero();
-        xt.fill(0.0);
-      } else {
-        a = a * m;
-      }
+      a = a * m;
       break;
     }
     case FrameOp::mirror:
     case FrameOp::amirror: {
-      if (w->frame_has_rpl) fail(col, "frame-words", fmt::format("{}: RPL= belongs to ROT / AROT", word));
       Eigen::Matrix3d m = Eigen::Matrix3d::Identity();
       for (int axis = 0; axis < 3; ++axis)
         if (w->has(static_cast<char>('X' + axis))) m(axis, axis) = -1.0;
-      if (op == FrameOp::mirror) {
-        a = m;
-        t.setZero();
-        xt.fill(0.0);
-      } else {
-        a = a * m;
-      }
+      a = a * m;
       break;
     }
     default:
       fail(col, "internal", "frame operation not handled");
-  }
-  if ((op == FrameOp::trans || op == FrameOp::rot || op == FrameOp::mirror || op == FrameOp::scale) && !any) {
-    a.setIdentity();  // TRANS / ROT / MIRROR alone: no programmable frame
-    t.setZero();
-    xt.fill(0.0);
   }
   frames.set_programmable(a, t);
   frames.set_programmable_extra(xt);

@@ -249,13 +249,7 @@ double SinumerikFrontEnd::primary(Cursor& c) {
   Variable* v = find_var(name);
   if (!v) fail(col, "undefined-variable", fmt::format("{}: variable not defined (DEF it first)", name));
   if (v->is_array) {
-    if (!c.eat('[')) fail(c.col(), "syntax", fmt::format("{}: an array needs an index [i]", name));
-    const double i = expr(c);
-    if (!c.eat(']')) fail(c.col(), "syntax", fmt::format("{}[: ']' expected", name));
-    const double r = std::round(i);
-    if (r < 0 || r >= static_cast<double>(v->array.size()))
-      fail(col, "index-range", fmt::format("{}[{}]: index beyond 0 .. {}", name, num(i), v->array.size() - 1));
-    return v->array[static_cast<std::size_t>(r)];
+    return array_element(c, *v, name, col);
   }
   if (v->type == VarType::string || v->type == VarType::axis)
     fail(col, "unsupported", fmt::format("{}: a STRING or AXIS variable in an arithmetic expression", name));

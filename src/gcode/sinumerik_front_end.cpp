@@ -631,18 +631,15 @@ void SinumerikFrontEnd::address(char letter, int col, Words& words) {
         return fmt::format("G{}: {} is not supported by Kontur (dialect sinumerik)", g, what);
       };
       switch (g) {
+        case 9:
+          add_g(words, 90000, col);
+          return;  // G9, taken out again in block()
         case 0:
         case 1:
         case 2:
         case 3:
-          add_g(words, g * 10, col);
-          return;
         case 4:
-          add_g(words, 40, col);
-          return;
-        case 9:
-          add_g(words, 90000, col);
-          return;  // G9, taken out again in block()
+        case 53:
         case 17:
         case 18:
         case 19:
@@ -656,10 +653,7 @@ void SinumerikFrontEnd::address(char letter, int col, Words& words) {
         case 97:
         case 41:
         case 42:
-          add_g(words, g * 10, col);
-          return;
-        case 53:
-          add_g(words, 530, col);
+          add_g(words, g * 10, col);  // the executor's code: G times 10
           return;
         case 110:
         case 111:
@@ -853,6 +847,16 @@ std::optional<SinumerikFrontEnd::VarType> SinumerikFrontEnd::var_type_named(std:
   return std::nullopt;
 }
 
+double& SinumerikFrontEnd::array_element(Cursor& c, Variable& v, std::string_view name, int col) {
+  if (!c.eat('[')) fail(c.col(), "syntax", fmt::format("{}: an array needs an index [i]", name));
+  const double i = expr(c);
+  if (!c.eat(']')) fail(c.col(), "syntax", fmt::format("{}[: ']' expected", name));
+  const double r = std::round(i);
+  if (r < 0 || r >= static_cast<double>(v.array.size()))
+    fail(col, "index-range", fmt::format("{}[{}]: index beyond 0 .. {}", name, num(i), v.array.size() - 1));
+  return v.array[static_cast<std::size_t>(r)];
+}
+
 std::size_t SinumerikFrontEnd::r_index(Cursor& c, int col) {
   ++c.p;  // '['
   const double i = expr(c);
@@ -869,13 +873,7 @@ double* SinumerikFrontEnd::lvalue(Cursor& c, std::string_view name, int col, Var
   if (Variable* v = find_var(name)) {
     *type = v->type;
     if (v->is_array) {
-      if (!c.eat('[')) fail(c.col(), "syntax", fmt::format("{}: an array needs an index [i]", name));
-      const double i = expr(c);
-      if (!c.eat(']')) fail(c.col(), "syntax", fmt::format("{}[: ']' expected", name));
-      const double r = std::round(i);
-      if (r < 0 || r >= static_cast<double>(v->array.size()))
-        fail(col, "index-range", fmt::format("{}[{}]: index beyond 0 .. {}", name, num(i), v->array.size() - 1));
-      return &v->array[static_cast<std::size_t>(r)];
+      return &array_element(c, *v, name, col);
     }
     return &v->value;
   }

@@ -175,6 +175,8 @@ class SinumerikFrontEnd final : public DialectFrontEnd {
   [[nodiscard]] static std::optional<VarType> var_type_named(std::string_view name);
   // After "R" at '[': the index of R[expression], checked against R0 .. R(r_count - 1).
   std::size_t r_index(Cursor& c, int col);
+  // After an array variable's name: its element [expression], the index checked against its size.
+  double& array_element(Cursor& c, Variable& v, std::string_view name, int col);
   void assign(Cursor& c, std::string_view name, int col);
   static double store(VarType type, double v);
 

@@ -17,12 +17,7 @@ Move move_along(std::shared_ptr<const Curve> curve, double feed_mm_s, bool exact
 }
 
 ExtraAxes extra_at(const Move& m, double s_mm) noexcept {
-  if (!(s_mm > 0.0) || !(m.length_mm > 0.0)) return m.extra_start;
-  if (s_mm >= m.length_mm) return m.extra_end;
-  const double f = s_mm / m.length_mm;
-  ExtraAxes x;
-  for (std::size_t i = 0; i < x.size(); ++i) x[i] = m.extra_start[i] + f * (m.extra_end[i] - m.extra_start[i]);
-  return x;
+  return m.length_mm > 0.0 ? extra_between(m.extra_start, m.extra_end, s_mm / m.length_mm) : m.extra_start;
 }
 
 double path_length(double tool_length_mm, const ExtraAxes& from, const ExtraAxes& to, bool& tool_still) noexcept {

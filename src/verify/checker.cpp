@@ -367,8 +367,7 @@ double Checker::extra_axis_error(const AxisVector& position, std::size_t m, doub
       const double len = tables_[m]->length_mm();
       f = len > 0.0 ? std::clamp(tables_[m]->s_of_u(u) / len, 0.0, 1.0) : 0.0;
     }
-    for (std::size_t i = 0; i < want.size(); ++i)
-      want[i] = f >= 1.0 ? mv.extra_end[i] : mv.extra_start[i] + f * (mv.extra_end[i] - mv.extra_start[i]);
+    want = extra_between(mv.extra_start, mv.extra_end, f);
   }
   double worst = 0.0;
   for (int e = 0; e < extra_axis_count; ++e) {

@@ -30,12 +30,8 @@ struct Segment {
   bool moves_extra = false;  ///< extra_start != extra_end
   /// The extra axes at distance `s_mm` along the move: exactly extra_start at 0 and extra_end at the end.
   [[nodiscard]] ExtraAxes extra_at(double s_mm) const noexcept {
-    if (!moves_extra || !(s_mm > 0.0) || !(move_length_mm > 0.0)) return extra_start;
-    if (s_mm >= move_length_mm) return extra_end;
-    const double f = s_mm / move_length_mm;
-    ExtraAxes x;
-    for (std::size_t i = 0; i < x.size(); ++i) x[i] = extra_start[i] + f * (extra_end[i] - extra_start[i]);
-    return x;
+    if (!moves_extra || !(move_length_mm > 0.0)) return extra_start;
+    return extra_between(extra_start, extra_end, s_mm / move_length_mm);
   }
   program::MoveId move = program::no_move;      ///< the move it belongs to
   long source_line = 0;                         ///< that move's line
