@@ -29,6 +29,9 @@ void register_run_command(CLI::App& app, int& exit_code);
 /// `kontur verify PROGRAM SETPOINTS`: check a setpoint file against a program and a machine.
 void register_verify_command(CLI::App& app, int& exit_code);
 
+/// `kontur replay STREAM`: run the lower level on a segment stream and write its setpoints.
+void register_replay_command(CLI::App& app, int& exit_code);
+
 /// `kontur machine [FILE]`: validate a machine file and print the limits in use.
 void register_machine_command(CLI::App& app, int& exit_code);
 

@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   register_machine_command(app, exit_code);
   register_run_command(app, exit_code);
   register_verify_command(app, exit_code);
+  register_replay_command(app, exit_code);
   register_arc_command(app, exit_code);
   register_conic_command(app, exit_code);
   register_check_command(app, exit_code);

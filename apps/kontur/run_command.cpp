@@ -17,6 +17,7 @@
 #include <kontur/io/setpoint_writer.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/pipeline.hpp>
+#include <kontur/segments/segment_stream.hpp>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -34,6 +35,7 @@ struct RunOptions {
   std::string machine;
   std::string output = "-";
   std::string format = "csv";
+  double segment_tolerance_mm = tolerances::segment_tolerance_mm;
   std::string summary;
   bool time_optimal = false;
   std::string report;
@@ -112,21 +114,39 @@ bool run_program(const RunOptions& o) {
   Progress progress(!o.quiet);
   const long total_lines = progress.enabled() ? count_lines(o.program) : 0;
   const SetpointFormat format = o.format == "binary" ? SetpointFormat::binary : SetpointFormat::csv;
+  const bool segments = o.format == "segments";
   PipelineOptions options;
   options.blend = !o.no_blend;
   options.smooth = !o.no_smooth;
   // The summary says which dialect was taken and why.
   options.reader = reader_options(o.read, o.program, &machine, true);
   options.time_optimal = o.time_optimal;
+  options.derivatives = segments;  // the stream fits the exact velocity and acceleration
   Pipeline pipeline(std::move(machine), options);
   std::unique_ptr<RunReportBuilder> builder;
   if (!o.report.empty()) builder = std::make_unique<RunReportBuilder>(pipeline.machine(), pipeline.moves(), pipeline.layout());
   RunResult result;
   const AxisLayout layout = pipeline.prepare(o.program);
+  segments::SegmentStats stream;
   auto produce = [&](std::ostream& out) {
-    SetpointWriter writer(out, format, pipeline.machine().servo_period_s, layout);
+    std::optional<SetpointWriter> writer;
+    std::optional<segments::SegmentWriter> stream_writer;
+    if (segments) {
+      segments::SegmentOptions so;
+      so.tolerance_mm = o.segment_tolerance_mm;
+      so.bounds = segments::axis_bounds(pipeline.machine(), layout);
+      stream_writer.emplace(out, pipeline.machine().servo_period_s, layout, so);
+    } else {
+      writer.emplace(out, format, pipeline.machine().servo_period_s, layout);
+    }
     PipelineEvents events;
-    events.setpoint = [&](const trajectory::Setpoint& sp) { writer.write(sp); };
+    events.setpoint = [&](const trajectory::Setpoint& sp) {
+      if (writer) {
+        writer->write(sp);
+      } else {
+        stream_writer->write(sp);
+      }
+    };
     if (builder) events.observer = [&](const verify::SampleMeasure& m) { builder->observe(m); };
     if (total_lines > 0)
       events.progress = [&](long line) {
@@ -134,6 +154,10 @@ bool run_program(const RunOptions& o) {
                         fmt::format("line {} of {}", line, total_lines));
       };
     result = pipeline.run(o.program, events);
+    if (stream_writer) {
+      stream_writer->finish();
+      stream = stream_writer->stats();
+    }
   };
   if (o.output == "-") {
     produce(std::cout);
@@ -146,6 +170,26 @@ bool run_program(const RunOptions& o) {
     std::vector<std::filesystem::path> report_inputs = inputs;
     if (o.output != "-") report_inputs.emplace_back(o.output);
     report::write_html_report(rep, o.report, report_inputs, RunReportBuilder::render_options());
+  }
+  if (segments && !result.summary_json.empty()) {
+    // What the stream holds, beside the check of the planner's setpoints it was fitted to.
+    nlohmann::ordered_json summary = nlohmann::ordered_json::parse(result.summary_json);
+    const double motion_s = std::max(result.total_time_s, pipeline.machine().servo_period_s);
+    summary["segments"] = {
+        {"pieces", stream.pieces},
+        {"anchors", stream.anchors},
+        {"float32_pieces", stream.float32_pieces},
+        {"pieces_by_degree", stream.by_degree},
+        {"limit_fallbacks", stream.limit_fallbacks},
+        {"bytes", stream.bytes},
+        {"bytes_per_second", static_cast<double>(stream.bytes) / motion_s},
+        {"setpoints_per_piece", stream.pieces > 0 ? static_cast<double>(stream.setpoints) / static_cast<double>(stream.pieces) : 0.0},
+        {"size_ratio_to_binary", static_cast<double>(24 + 8 * (layout.size() + 3) * stream.setpoints) /
+                                     static_cast<double>(std::max<std::uint64_t>(stream.bytes, 1))},
+        {"tolerance_mm", o.segment_tolerance_mm},
+        {"max_error_mm", stream.max_error_mm},
+        {"max_speed_error_mm_s", stream.max_speed_error_mm_s}};
+    result.summary_json = summary.dump(2) + "\n";
   }
   write_summary(result.summary_json, o.summary, o.quiet, inputs);
   return result.passed;
@@ -161,8 +205,15 @@ void register_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("PROGRAM", o->program, "part program (G-code)")->required();
   cmd->add_option("--machine", o->machine, "machine file: Kontur TOML, or LinuxCNC INI (default: embedded)");
   cmd->add_option("-o,--output", o->output, "setpoint file, '-' for stdout")->capture_default_str();
-  cmd->add_option("--format", o->format, "csv or binary (docs/setpoints.md)")
-      ->check(CLI::IsMember({"csv", "binary"}))
+  cmd->add_option("--format", o->format,
+                  "csv or binary setpoints (docs/setpoints.md), or segments: the stream of polynomial pieces the "
+                  "lower level replays (docs/segments.md, kontur replay)")
+      ->check(CLI::IsMember({"csv", "binary", "segments"}))
+      ->capture_default_str();
+  cmd->add_option("--segment-tolerance", o->segment_tolerance_mm,
+                  "with --format segments: largest distance of a replayed setpoint from the planner's [mm] ([deg] "
+                  "for A B C; the path speed gets it divided by the servo period [mm/s])")
+      ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--summary", o->summary,
                   "JSON summary file, per program and per block (default: stderr, none with --quiet); - for stdout "

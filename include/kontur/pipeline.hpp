@@ -28,6 +28,8 @@ struct PipelineOptions {
   bool smooth = true;         ///< smooth runs of dense lines within the G64 tolerance (false: `--no-smooth`)
   bool check = true;          ///< check the setpoints independently as they stream (false: planning only)
   bool time_optimal = false;  ///< add the time-optimal reference (acceleration-limited) to the summary
+  /// Setpoints carry their exact velocity and acceleration (Setpoint::velocity, for the segment stream).
+  bool derivatives = false;
   /// How the program is read: block delete, dialect (none: the machine's, else detected).
   gcode::ReaderOptions reader;
 };

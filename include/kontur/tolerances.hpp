@@ -270,4 +270,17 @@ inline constexpr double check_resync_mm = 1e-7;
 /// The checker accepts a blend whose deviation exceeds its tolerance by at most this, relative.
 inline constexpr double blend_deviation_relative = 1e-9;
 
+// ---- the segment stream (segments/segment_stream.hpp, docs/segments.md)
+/// Largest distance of a setpoint replayed by the lower level from the planner's [mm] ([deg] for
+/// A B C): the default of `kontur run --format segments` (--segment-tolerance).
+inline constexpr double segment_tolerance_mm = 1e-6;
+/// Longest piece of the stream [servo cycles]: also what the writer holds before it must fit.
+inline constexpr int segment_max_piece_cycles = 8192;
+/// A piece of the stream ends within this share of the tolerance of the planner's setpoint (the
+/// next piece starts from there).
+inline constexpr double segment_end_share = 1e-3;
+/// The smallest --segment-tolerance: a few hundred ulps of a 10 m coordinate, above the rounding
+/// of the lower level's additions over a piece [mm].
+inline constexpr double segment_min_tolerance_mm = 1e-9;
+
 }  // namespace kontur::tolerances

@@ -78,7 +78,7 @@ RunResult Pipeline::run(const std::string& program, const PipelineEvents& events
   prepared_for_.reset();  // the next run reads its program again
   trajectory::Trajectory trajectory;
   plan::MotionPlanner planner(machine_, trajectory);
-  trajectory::Sampler sampler(trajectory, machine_.servo_period_s, layout_);
+  trajectory::Sampler sampler(trajectory, machine_.servo_period_s, layout_, options_.derivatives);
   std::unique_ptr<verify::Checker> checker;
   if (options_.check) checker = std::make_unique<verify::Checker>(path_.moves(), machine_, layout_, events.observer);
   RunResult result;

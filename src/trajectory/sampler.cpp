@@ -10,6 +10,41 @@ void Sampler::emit(Setpoint& out, double t, const Vec3& p, const ExtraAxes& extr
   out.v_mm_s = v;
   out.source_line = line;
   out.move = move;
+  if (derivatives_) {
+    out.velocity = AxisVector::Zero(layout_.size());
+    out.acceleration = AxisVector::Zero(layout_.size());
+    out.a_mm_s2 = 0.0;
+    out.j_mm_s3 = 0.0;
+  }
+}
+
+void Sampler::emit_derivatives(Setpoint& out, const Segment& m, double u, const PathState& st) const noexcept {
+  out.a_mm_s2 = st.a;
+  out.j_mm_s3 = st.j;
+  if (st.v == 0.0 && st.a == 0.0) return;
+  // Tool point: x(t) = C(u(s(t))); with the unit tangent T = C'/|C'| and the curvature vector
+  // K = (C'' - (T.C'') T) / |C'|^2: dx/dt = T v, d2x/dt2 = K v^2 + T a.
+  Vec3 velocity = Vec3::Zero(), acceleration = Vec3::Zero();
+  if (!m.tool_still) {
+    const Derivatives d = m.curve->derivatives(u, 2);
+    const double speed_u = d[1].norm();  // ds/du
+    if (speed_u > 0.0) {
+      const Vec3 tangent = d[1] / speed_u;
+      const Vec3 curvature = (d[2] - tangent * tangent.dot(d[2])) / (speed_u * speed_u);
+      velocity = tangent * st.v;
+      acceleration = curvature * (st.v * st.v) + tangent * st.a;
+    }
+  }
+  // Extra axes: linear in the distance along the move.
+  ExtraAxes rate{}, rate_v{}, rate_a{};
+  if (m.moves_extra && m.move_length_mm > 0.0)
+    for (std::size_t e = 0; e < rate.size(); ++e) {
+      rate[e] = (m.extra_end[e] - m.extra_start[e]) / m.move_length_mm;
+      rate_v[e] = rate[e] * st.v;
+      rate_a[e] = rate[e] * st.a;
+    }
+  out.velocity = layout_.from_tool(velocity, rate_v);
+  out.acceleration = layout_.from_tool(acceleration, rate_a);
 }
 
 bool Sampler::next(Setpoint& out) noexcept {
@@ -28,6 +63,10 @@ bool Sampler::next(Setpoint& out) noexcept {
     const bool holding = m.hold_before_s > 0.0;
     emit(out, 0.0, m.curve->point(u_), m.extra_at(s_), holding ? 0.0 : m.start_velocity(),
          holding ? m.hold_before_line : m.source_line, holding ? m.hold_before_move : m.move);
+    if (derivatives_ && !holding) {
+      PathState st = m.profile.sample(m.window_t0_s);
+      emit_derivatives(out, m, u_, st);
+    }
     return true;
   }
   double t_move = t_move_ + period_;
@@ -61,8 +100,9 @@ bool Sampler::next(Setpoint& out) noexcept {
     if (m.hold_before_s > 0.0) {  // dwelling before the segment
       line = m.hold_before_line;
       move = m.hold_before_move;
-    } else {  // exactly at its start: the speed of its window's start (a chain's may be > 0)
-      st.v = m.start_velocity();
+    } else {  // exactly at its start: the state of its window's start (a chain's speed may be > 0)
+      st = m.profile.sample(m.window_t0_s);
+      st.s = 0.0;
     }
   } else if (t_profile >= m.motion_s()) {
     st.s = m.s1_mm - m.s0_mm;  // dwelling after the segment
@@ -83,6 +123,7 @@ bool Sampler::next(Setpoint& out) noexcept {
   t_move_ = t_move;
   t_ += period_;
   emit(out, t_, m.curve->point(u_), m.extra_at(st.s >= m.s1_mm - m.s0_mm ? m.s1_mm : s_), st.v, line, move);
+  if (derivatives_) emit_derivatives(out, m, u_, st);
   return true;
 }
 

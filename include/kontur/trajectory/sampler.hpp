@@ -17,13 +17,23 @@ struct Setpoint {
   double v_mm_s = 0.0;                        ///< planned path speed [mm/s]
   long source_line = 0;                       ///< line of the move it lies on (of the dwell, while dwelling)
   program::MoveId move = program::no_move;    ///< the move it lies on (no_move: unknown, e.g. read from a file)
+  /// Only from a Sampler with derivatives on (else zero): the exact axis velocities [mm/s] or
+  /// [deg/s] and accelerations [mm/s^2] or [deg/s^2] of the planned motion at this setpoint, and
+  /// the path's acceleration [mm/s^2] and jerk [mm/s^3] (the derivatives of v_mm_s).
+  AxisVector velocity = AxisVector::Zero(3);
+  AxisVector acceleration = AxisVector::Zero(3);
+  double a_mm_s2 = 0.0;
+  double j_mm_s3 = 0.0;
 };
 
 class Sampler {
  public:
   /// Samples `trajectory` (kept by reference) every `period_s` [s]; positions in `layout`.
-  Sampler(Trajectory& trajectory, double period_s, const AxisLayout& layout = AxisLayout::xyz()) noexcept
-      : trajectory_(&trajectory), period_(period_s), layout_(layout) {}
+  /// With `derivatives`, each setpoint also gets its exact velocity and acceleration (the curve's
+  /// first and second derivatives at its point: the segment stream fits them; segments/).
+  Sampler(Trajectory& trajectory, double period_s, const AxisLayout& layout = AxisLayout::xyz(),
+          bool derivatives = false) noexcept
+      : trajectory_(&trajectory), period_(period_s), layout_(layout), derivatives_(derivatives) {}
   /// The next setpoint: false when the trajectory has no segment for it yet (the planner must
   /// append more), or when done(). The first setpoint is the start point at t = 0.
   bool next(Setpoint& out) noexcept;
@@ -37,10 +47,13 @@ class Sampler {
  private:
   void emit(Setpoint& out, double t, const Vec3& p, const ExtraAxes& extra, double v, long line,
             program::MoveId move) const noexcept;
+  // The velocity and acceleration of `out` on segment `m` at parameter u with path state `st`.
+  void emit_derivatives(Setpoint& out, const Segment& m, double u, const PathState& st) const noexcept;
 
   Trajectory* trajectory_;
   double period_;
   AxisLayout layout_;
+  bool derivatives_ = false;
   std::size_t current_ = 0;  // index of the current segment
   bool started_ = false;
   bool end_given_ = false;

@@ -1,0 +1,497 @@
+// The upper level of the segment stream (segments/segment_stream.hpp, docs/segments.md).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <kontur/error.hpp>
+#include <kontur/segments/segment_stream.hpp>
+
+#include "kontur_ll.h"
+#include "segment_bytes.hpp"
+
+namespace kontur::segments {
+namespace {
+
+constexpr int kChannels = KLL_MAX_CHANNELS;
+constexpr int kDegree = KLL_MAX_DEGREE;
+using Coeffs = std::array<double, kDegree + 1>;
+
+// Forward differences at m = 0 of m^j, orders k = 0..5: k! S(j, k) (S: Stirling numbers of the
+// second kind). Row j converts a power-basis coefficient to Newton's forward form.
+constexpr std::array<Coeffs, kDegree + 1> kPowerToNewton = {{
+    {1, 0, 0, 0, 0, 0},
+    {0, 1, 0, 0, 0, 0},
+    {0, 1, 2, 0, 0, 0},
+    {0, 1, 6, 6, 0, 0},
+    {0, 1, 14, 36, 24, 0},
+    {0, 1, 30, 150, 240, 120},
+}};
+// binom(m, k) = sum_j kNewtonToPower[k][j] m^j (Stirling numbers of the first kind over k!).
+constexpr std::array<Coeffs, kDegree + 1> kNewtonToPower = {{
+    {1, 0, 0, 0, 0, 0},
+    {0, 1, 0, 0, 0, 0},
+    {0, -1.0 / 2, 1.0 / 2, 0, 0, 0},
+    {0, 2.0 / 6, -3.0 / 6, 1.0 / 6, 0, 0},
+    {0, -6.0 / 24, 11.0 / 24, -6.0 / 24, 1.0 / 24, 0},
+    {0, 24.0 / 120, -50.0 / 120, 35.0 / 120, -10.0 / 120, 1.0 / 120},
+}};
+
+// One setpoint in the writer's units: per channel (the axes, then the path speed) the value, its
+// first and second derivative per servo cycle (velocity * T, acceleration * T^2).
+struct Sample {
+  std::array<double, kChannels> x{}, v{}, a{};
+  long line = 0;
+};
+
+// Value and first two derivatives of a power-basis polynomial at m.
+struct Jet {
+  double value = 0.0, d1 = 0.0, d2 = 0.0;
+};
+Jet evaluate(const Coeffs& c, double m) {
+  Jet j;
+  for (int k = kDegree; k >= 0; --k) {
+    j.d2 = j.d2 * m + 2.0 * j.d1;
+    j.d1 = j.d1 * m + j.value;
+    j.value = j.value * m + c[static_cast<std::size_t>(k)];
+  }
+  return j;
+}
+
+// A piece's encoding.
+struct Encoding {
+  int degree = kDegree;
+  bool f32 = false;
+};
+
+}  // namespace
+
+struct SegmentWriter::Impl {
+  std::ostream* out = nullptr;
+  double period_s = 0.0;
+  int axes = 3, channels = 4;
+  SegmentOptions options;
+  std::array<double, kChannels> tolerance{};  // per channel [mm] / [mm/s]
+  std::deque<Sample> held;                    // setpoints not yet in a piece
+  kll_stream state{};                         // the lower level after every record written
+  std::uint32_t index = 0;                    // index of the next record
+  bool finished = false;
+  // The candidate piece: anchor or continuation, and its coefficients per channel (anchor: power
+  // basis c0..c5 in the cycle index; continuation: the changes dc3..dc5 in coefficients 3..5).
+  bool anchor = false;
+  std::array<Coeffs, kChannels> coeffs{};
+  std::array<Coeffs, kChannels> base{};  // the state's polynomial (power basis) at the piece's start
+  std::vector<std::uint8_t> record;
+  kll_stream trial{};
+  // The last three setpoints before the held ones: the planner's and the lower level's (for the
+  // backward differences of the limit check), oldest first; `history` of them are known.
+  std::array<std::array<double, kChannels>, 3> planned_before{}, replayed_before{};
+  int history = 0;
+  bool bounded = false;
+  bool enforce_limits = true;
+  // Backward differences of the candidate's replayed positions, and of the planner's.
+  std::array<std::array<double, kChannels>, 4> replay_window{}, plan_window{};
+
+  void write_header(SegmentStats& stats, const AxisLayout& layout);
+  void fit_piece(SegmentStats& stats);
+  [[nodiscard]] bool needs_anchor() const;
+  void solve(int n);
+  void encode(int n, Encoding e);
+  [[nodiscard]] double check(int n);
+  // Error of the replayed channel values `r` against sample `s`, in tolerances.
+  [[nodiscard]] double error(const double* r, const Sample& s) const;
+  // Whether the replayed setpoint `r` (the m-th of the candidate, m = 0..n) keeps the limits where
+  // the planner's does.
+  [[nodiscard]] bool keeps_limits(int m, const double* r);
+  [[nodiscard]] bool fits(int n) {
+    solve(n);
+    encode(n, {});
+    return check(n) <= 1.0;
+  }
+};
+
+SegmentWriter::SegmentWriter(std::ostream& out, double period_s, const AxisLayout& layout, SegmentOptions options)
+    : impl_(std::make_unique<Impl>()) {
+  if (!std::isfinite(options.tolerance_mm) || options.tolerance_mm < tolerances::segment_min_tolerance_mm)
+    throw InputError("segment-tolerance",
+                     fmt::format("the segment tolerance {} mm is below the smallest the lower level's rounding allows "
+                                 "({} mm)",
+                                 options.tolerance_mm, tolerances::segment_min_tolerance_mm));
+  if (options.max_piece_cycles < 1)
+    throw InputError("segment-piece", fmt::format("the longest piece must be at least 1 cycle, not {}",
+                                                  options.max_piece_cycles));
+  if (!(period_s > 0.0) || !std::isfinite(period_s))
+    throw InputError("segment-period", fmt::format("the servo period {} s is not positive", period_s));
+  Impl& m = *impl_;
+  m.out = &out;
+  m.period_s = period_s;
+  m.axes = layout.size();
+  m.channels = m.axes + 1;
+  m.options = options;
+  for (int c = 0; c < m.axes; ++c) m.tolerance[static_cast<std::size_t>(c)] = options.tolerance_mm;
+  m.bounded = !options.bounds.empty();
+  if (m.bounded && static_cast<int>(options.bounds.size()) != m.axes)
+    throw std::invalid_argument("SegmentWriter: one AxisBounds per axis of the layout");
+  m.tolerance[static_cast<std::size_t>(m.axes)] = options.tolerance_mm / period_s;
+  m.write_header(stats_, layout);
+}
+
+SegmentWriter::~SegmentWriter() = default;
+
+void SegmentWriter::Impl::write_header(SegmentStats& stats, const AxisLayout& layout) {
+  std::array<std::uint8_t, KLL_HEADER_SIZE> h{};
+  std::memcpy(h.data(), segment_stream_magic, 8);
+  bytes::put_u32(h.data() + 8, KLL_FORMAT_VERSION);
+  bytes::put_u32(h.data() + 12, static_cast<std::uint32_t>(axes));
+  for (int i = 0; i < axes; ++i) h[16 + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(layout.letter(i));
+  bytes::put_f64(h.data() + 32, period_s);
+  bytes::put_f64(h.data() + 40, options.tolerance_mm);
+  bytes::put_f64(h.data() + 48, tolerance[static_cast<std::size_t>(axes)]);
+  bytes::put_u32(h.data() + 60, kll_crc32(h.data(), 60));
+  if (kll_open(&state, h.data(), h.size()) != KLL_OK)
+    throw InputError("segment-header", "the segment stream's header cannot be read back (an axis count or period out of range)");
+  out->write(reinterpret_cast<const char*>(h.data()), static_cast<std::streamsize>(h.size()));
+  stats.bytes += h.size();
+}
+
+void SegmentWriter::write(const trajectory::Setpoint& s) {
+  Impl& m = *impl_;
+  Sample x;
+  const double t = m.period_s;
+  for (int c = 0; c < m.axes; ++c) {
+    const auto i = static_cast<std::size_t>(c);
+    x.x[i] = s.position[c];
+    x.v[i] = s.velocity.size() > c ? s.velocity[c] * t : 0.0;
+    x.a[i] = s.acceleration.size() > c ? s.acceleration[c] * t * t : 0.0;
+  }
+  const auto sp = static_cast<std::size_t>(m.axes);
+  x.x[sp] = s.v_mm_s;
+  x.v[sp] = s.a_mm_s2 * t;
+  x.a[sp] = s.j_mm_s3 * t * t;
+  x.line = s.source_line;
+  m.held.push_back(x);
+  ++stats_.setpoints;
+  // A piece needs the setpoint after its last (its end conditions): fit once the longest fits.
+  while (m.held.size() > static_cast<std::size_t>(m.options.max_piece_cycles)) m.fit_piece(stats_);
+}
+
+void SegmentWriter::finish() {
+  Impl& m = *impl_;
+  if (m.finished) return;
+  m.finished = true;
+  if (!m.held.empty()) {
+    // The run ends at rest: the last setpoint held once more is the last piece's end condition.
+    Sample last = m.held.back();
+    for (int c = 0; c < m.channels; ++c) last.v[static_cast<std::size_t>(c)] = last.a[static_cast<std::size_t>(c)] = 0.0;
+    m.held.push_back(last);
+    while (m.held.size() > 1) m.fit_piece(stats_);
+    m.held.clear();
+  }
+  // The end record: the number of setpoints.
+  m.record.assign(KLL_RECORD_HEAD_SIZE + 8 + 4, 0);
+  m.record[0] = KLL_KIND_END;
+  bytes::put_u32(m.record.data() + 8, m.index);
+  bytes::put_u64(m.record.data() + 16, static_cast<std::uint64_t>(stats_.setpoints));
+  bytes::put_u32(m.record.data() + 24, kll_crc32(m.record.data(), 24));
+  m.out->write(reinterpret_cast<const char*>(m.record.data()), static_cast<std::streamsize>(m.record.size()));
+  stats_.bytes += m.record.size();
+  ++m.index;
+}
+
+bool SegmentWriter::Impl::needs_anchor() const {
+  if (index == 0) return true;
+  // At rest (a stop at a block end, a dwell): exactly where the planner is, so stops are exact.
+  const Sample& s = held.front();
+  for (int c = 0; c < channels; ++c) {
+    const auto i = static_cast<std::size_t>(c);
+    if (s.v[i] != 0.0 || s.a[i] != 0.0) return false;
+  }
+  if (s.x[static_cast<std::size_t>(axes)] != 0.0) return false;
+  for (int c = 0; c < channels; ++c) {
+    const auto i = static_cast<std::size_t>(c);
+    if (state.d[i][0] != s.x[i]) return true;
+    for (int k = 1; k <= kDegree; ++k)
+      if (state.d[i][static_cast<std::size_t>(k)] != 0.0) return true;
+  }
+  return false;
+}
+
+// The quintic Hermite correction over n cycles: from the base polynomial (the state's, or for an
+// anchor the exact position, velocity and acceleration of the first setpoint), the coefficients
+// 3..5 that reach setpoint n's position, velocity and acceleration.
+void SegmentWriter::Impl::solve(int n) {
+  const Sample& end = held[static_cast<std::size_t>(n)];
+  const double nd = static_cast<double>(n);
+  for (int c = 0; c < channels; ++c) {
+    const auto i = static_cast<std::size_t>(c);
+    const Jet b = evaluate(base[i], nd);
+    const double ra = end.x[i] - b.value, rb = nd * (end.v[i] - b.d1), rc = nd * nd * (end.a[i] - b.d2);
+    const double e3 = 10.0 * ra - 4.0 * rb + 0.5 * rc;
+    const double e4 = -15.0 * ra + 7.0 * rb - rc;
+    const double e5 = 6.0 * ra - 3.0 * rb + 0.5 * rc;
+    Coeffs& k = coeffs[i];
+    if (anchor) {
+      k = base[i];
+    } else {
+      k.fill(0.0);
+    }
+    k[3] += e3 / (nd * nd * nd);
+    k[4] += e4 / (nd * nd * nd * nd);
+    k[5] += e5 / (nd * nd * nd * nd * nd);
+  }
+}
+
+void SegmentWriter::Impl::encode(int n, Encoding e) {
+  const std::size_t marks_at = KLL_RECORD_HEAD_SIZE;
+  record.assign(KLL_RECORD_HEAD_SIZE, 0);
+  record[0] = static_cast<std::uint8_t>(anchor ? KLL_KIND_ANCHOR : KLL_KIND_CONTINUE);
+  record[1] = static_cast<std::uint8_t>(e.degree);
+  record[2] = static_cast<std::uint8_t>(e.f32 ? KLL_FLAG_FLOAT32 : 0u);
+  bytes::put_u32(record.data() + 4, static_cast<std::uint32_t>(n));
+  bytes::put_u32(record.data() + 8, index);
+  bytes::put_u32(record.data() + 12, static_cast<std::uint32_t>(static_cast<std::int32_t>(held.front().line)));
+  int marks = 0;
+  for (int m = 1; m < n; ++m) {
+    const long line = held[static_cast<std::size_t>(m)].line;
+    if (line == held[static_cast<std::size_t>(m - 1)].line) continue;
+    record.resize(record.size() + 8);
+    bytes::put_u32(record.data() + marks_at + 8 * static_cast<std::size_t>(marks), static_cast<std::uint32_t>(m));
+    bytes::put_u32(record.data() + marks_at + 8 * static_cast<std::size_t>(marks) + 4,
+                   static_cast<std::uint32_t>(static_cast<std::int32_t>(line)));
+    ++marks;
+  }
+  record[3] = static_cast<std::uint8_t>(marks);
+  auto put = [&](double v) {
+    const std::size_t at = record.size();
+    if (e.f32) {
+      record.resize(at + 4);
+      bytes::put_f32(record.data() + at, static_cast<float>(v));
+    } else {
+      record.resize(at + 8);
+      bytes::put_f64(record.data() + at, v);
+    }
+  };
+  for (int c = 0; c < channels; ++c) {
+    const Coeffs& k = coeffs[static_cast<std::size_t>(c)];
+    if (anchor) {
+      // Newton's forward form of the polynomial cut to the degree: D_0 = c_0 exactly.
+      for (int d = 0; d <= e.degree; ++d) {
+        double v = 0.0;
+        for (int j = d; j <= e.degree; ++j)
+          v += kPowerToNewton[static_cast<std::size_t>(j)][static_cast<std::size_t>(d)] * k[static_cast<std::size_t>(j)];
+        put(d == 0 ? k[0] : v);
+      }
+    } else {
+      for (int j = 3; j <= e.degree; ++j) put(k[static_cast<std::size_t>(j)]);
+    }
+  }
+  const std::size_t at = record.size();
+  record.resize(at + 4);
+  bytes::put_u32(record.data() + at, kll_crc32(record.data(), at));
+}
+
+double SegmentWriter::Impl::error(const double* r, const Sample& s) const {
+  // The tool point X Y Z together (the layout starts with them), every other channel alone.
+  double tool = 0.0, worst = 0.0;
+  for (int c = 0; c < channels; ++c) {
+    const auto i = static_cast<std::size_t>(c);
+    const double e = std::abs(r[i] - s.x[i]);
+    if (c < 3)
+      tool += e * e;
+    else
+      worst = std::max(worst, e / tolerance[i]);
+  }
+  return std::max(worst, std::sqrt(tool) / tolerance[0]);
+}
+
+bool SegmentWriter::Impl::keeps_limits(int m, const double* r) {
+  // Shift the windows: [0] is the newest.
+  const Sample& s = held[static_cast<std::size_t>(m)];
+  for (int k = 3; k > 0; --k) {
+    replay_window[static_cast<std::size_t>(k)] = replay_window[static_cast<std::size_t>(k - 1)];
+    plan_window[static_cast<std::size_t>(k)] = plan_window[static_cast<std::size_t>(k - 1)];
+  }
+  for (int c = 0; c < axes; ++c) {
+    replay_window[0][static_cast<std::size_t>(c)] = r[c];
+    plan_window[0][static_cast<std::size_t>(c)] = s.x[static_cast<std::size_t>(c)];
+  }
+  const int known = history + m + 1;  // setpoints in the windows
+  const double t = period_s;
+  for (int c = 0; c < axes; ++c) {
+    const auto i = static_cast<std::size_t>(c);
+    const AxisBounds& b = options.bounds[i];
+    auto over = [&](const std::array<std::array<double, kChannels>, 4>& w, int order) {
+      const double d = order == 1   ? w[0][i] - w[1][i]
+                       : order == 2 ? w[0][i] - 2 * w[1][i] + w[2][i]
+                                    : w[0][i] - 3 * w[1][i] + 3 * w[2][i] - w[3][i];
+      const double limit = order == 1 ? b.max_velocity * t : order == 2 ? b.max_acceleration * t * t : b.max_jerk * t * t * t;
+      return std::abs(d) / limit;
+    };
+    for (int order = 1; order <= 3 && order < known; ++order)
+      if (over(replay_window, order) > std::max(1.0, over(plan_window, order))) return false;
+  }
+  return true;
+}
+
+// Runs the lower level on the encoded record: the largest distance of its setpoints 0..n (n: the
+// next piece's first, which this piece's end state decides) from the planner's, in tolerances;
+// infinity if one is beyond the tolerance or breaks a limit the planner's keeps.
+double SegmentWriter::Impl::check(int n) {
+  trial = state;
+  if (kll_feed(&trial, record.data(), record.size()) != KLL_OK) return INFINITY;
+  if (bounded)
+    for (int k = 0; k < 3; ++k) {  // (keeps_limits shifts them by one before it adds setpoint m)
+      replay_window[static_cast<std::size_t>(k)] = replayed_before[static_cast<std::size_t>(2 - k)];
+      plan_window[static_cast<std::size_t>(k)] = planned_before[static_cast<std::size_t>(2 - k)];
+    }
+  kll_setpoint sp;
+  std::array<double, kChannels> r{};
+  double worst = 0.0;
+  for (int m = 0; m <= n; ++m) {
+    if (m < n) {
+      kll_next(&trial, &sp);
+      for (int c = 0; c < axes; ++c) r[static_cast<std::size_t>(c)] = sp.position[static_cast<std::size_t>(c)];
+      r[static_cast<std::size_t>(axes)] = sp.speed_mm_s;
+    } else {  // the next piece's first setpoint: where this one leaves the state
+      for (int c = 0; c < channels; ++c) r[static_cast<std::size_t>(c)] = trial.d[static_cast<std::size_t>(c)][0];
+    }
+    const double e = error(r.data(), held[static_cast<std::size_t>(m)]);
+    // The state a piece leaves is where the next one starts: it must be the planner's to a
+    // thousandth of the tolerance, or the next piece would have to bend back (a bump in the
+    // acceleration and jerk the replayed setpoints show).
+    if (!(e <= (m < n ? 1.0 : tolerances::segment_end_share))) return INFINITY;
+    worst = std::max(worst, e);
+    if (bounded && enforce_limits && !keeps_limits(m, r.data())) return INFINITY;
+  }
+  // The next piece's first backward differences reach back into this one: they must keep the
+  // limits even if it makes the planner's setpoints exactly (as its shortest piece does).
+  if (bounded && enforce_limits)
+    for (int m = n + 1; m <= n + 3 && m < static_cast<int>(held.size()); ++m)
+      if (!keeps_limits(m, held[static_cast<std::size_t>(m)].x.data())) return INFINITY;
+  return worst;
+}
+
+void SegmentWriter::Impl::fit_piece(SegmentStats& stats) {
+  // The longest piece the setpoints held and the marks allow.
+  int limit = static_cast<int>(std::min<std::size_t>(held.size() - 1, static_cast<std::size_t>(options.max_piece_cycles)));
+  int marks = 0;
+  for (int m = 1; m < limit; ++m) {
+    if (held[static_cast<std::size_t>(m)].line == held[static_cast<std::size_t>(m - 1)].line) continue;
+    if (++marks > KLL_MAX_MARKS) {
+      limit = m;  // a piece of m cycles holds the marks before m
+      break;
+    }
+  }
+  anchor = needs_anchor();
+  auto set_base = [&] {
+    const Sample& s = held.front();
+    for (int c = 0; c < channels; ++c) {
+      const auto i = static_cast<std::size_t>(c);
+      Coeffs& b = base[i];
+      b.fill(0.0);
+      if (anchor) {
+        b[0] = s.x[i];
+        b[1] = s.v[i];
+        b[2] = 0.5 * s.a[i];
+      } else {
+        for (int k = 0; k <= kDegree; ++k)
+          for (int j = 0; j <= k; ++j)
+            b[static_cast<std::size_t>(j)] += state.d[i][static_cast<std::size_t>(k)] *
+                                              kNewtonToPower[static_cast<std::size_t>(k)][static_cast<std::size_t>(j)];
+      }
+    }
+  };
+  set_base();
+  if (!fits(1) && !anchor) {
+    // The carried state cannot go on within the tolerance (or the limits): start afresh from the
+    // planner's exact state (an anchor's first setpoint is the planner's).
+    anchor = true;
+    set_base();
+  }
+  int lo = 1;
+  if (fits(1)) {
+    // Doubling, then bisection, for the longest piece within the tolerance.
+    while (2 * lo <= limit && fits(2 * lo)) lo *= 2;
+    int hi = std::min(2 * lo, limit + 1);
+    while (hi - lo > 1) {
+      const int mid = lo + (hi - lo) / 2;
+      (fits(mid) ? lo : hi) = mid;
+    }
+  } else {
+    // Not even one cycle keeps the limits: the planner's exact setpoints, one cycle (its
+    // backward differences then differ from the planner's by the rounding of the last pieces).
+    enforce_limits = false;
+    const bool exact = fits(1);
+    enforce_limits = true;
+    if (!exact)
+      throw InputError("segment-tolerance",
+                       fmt::format("the segment tolerance {} mm is below what the lower level's arithmetic reaches at "
+                                   "setpoint {}: give a larger --segment-tolerance",
+                                   options.tolerance_mm, stats.setpoints - static_cast<long>(held.size())));
+    ++stats.limit_fallbacks;
+  }
+  const int n = lo;
+  solve(n);
+  // The fewest bytes that still fit.
+  static constexpr std::array<Encoding, 5> continuations = {{{2, false}, {3, true}, {3, false}, {5, true}, {5, false}}};
+  static constexpr std::array<Encoding, 5> anchors = {{{0, false}, {1, false}, {2, false}, {3, false}, {5, false}}};
+  Encoding chosen{};
+  for (const Encoding& e : anchor ? anchors : continuations) {
+    encode(n, e);
+    if (check(n) <= 1.0) {
+      chosen = e;
+      break;
+    }
+  }
+  encode(n, chosen);
+  // Commit: the lower level's state moves on; the errors go to the statistics.
+  if (kll_feed(&state, record.data(), record.size()) != KLL_OK)
+    throw std::logic_error("segment writer: a record it made was refused by the lower level");
+  kll_setpoint sp;
+  for (int m = 0; m < n; ++m) {
+    kll_next(&state, &sp);
+    const Sample& s = held[static_cast<std::size_t>(m)];
+    double tool = 0.0;
+    for (int c = 0; c < axes; ++c) {
+      const double e = std::abs(sp.position[static_cast<std::size_t>(c)] - s.x[static_cast<std::size_t>(c)]);
+      if (c < 3)
+        tool += e * e;
+      else
+        stats.max_error_mm = std::max(stats.max_error_mm, e);
+    }
+    stats.max_error_mm = std::max(stats.max_error_mm, std::sqrt(tool));
+    stats.max_speed_error_mm_s = std::max(stats.max_speed_error_mm_s, std::abs(sp.speed_mm_s - s.x[static_cast<std::size_t>(axes)]));
+    // The history of the limit check: oldest first.
+    planned_before[0] = planned_before[1];
+    planned_before[1] = planned_before[2];
+    replayed_before[0] = replayed_before[1];
+    replayed_before[1] = replayed_before[2];
+    for (int c = 0; c < axes; ++c) {
+      planned_before[2][static_cast<std::size_t>(c)] = s.x[static_cast<std::size_t>(c)];
+      replayed_before[2][static_cast<std::size_t>(c)] = sp.position[static_cast<std::size_t>(c)];
+    }
+    history = std::min(history + 1, 3);
+  }
+  out->write(reinterpret_cast<const char*>(record.data()), static_cast<std::streamsize>(record.size()));
+  stats.bytes += record.size();
+  ++stats.pieces;
+  if (anchor) ++stats.anchors;
+  if (chosen.f32) ++stats.float32_pieces;
+  ++stats.by_degree[static_cast<std::size_t>(chosen.degree)];
+  ++index;
+  held.erase(held.begin(), held.begin() + n);
+}
+
+std::vector<AxisBounds> axis_bounds(const Machine& machine, const AxisLayout& layout) {
+  std::vector<AxisBounds> b;
+  for (int i = 0; i < layout.size(); ++i) {
+    const AxisLimits* a = machine.axis(layout.letter(i));
+    if (a == nullptr) throw std::invalid_argument(fmt::format("axis_bounds: the machine has no {} axis", layout.letter(i)));
+    b.push_back({a->max_velocity, a->max_acceleration, a->max_jerk});
+  }
+  return b;
+}
+
+}  // namespace kontur::segments
