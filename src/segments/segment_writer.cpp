@@ -97,6 +97,7 @@ struct SegmentWriter::Impl {
   void write_header(SegmentStats& stats, const AxisLayout& layout);
   void fit_piece(SegmentStats& stats);
   [[nodiscard]] bool needs_anchor() const;
+  [[nodiscard]] bool at_rest(const Sample& s) const;
   void solve(int n);
   void encode(int n, Encoding e);
   [[nodiscard]] double check(int n);
@@ -200,15 +201,19 @@ void SegmentWriter::finish() {
   ++m.index;
 }
 
-bool SegmentWriter::Impl::needs_anchor() const {
-  if (index == 0) return true;
-  // At rest (a stop at a block end, a dwell): exactly where the planner is, so stops are exact.
-  const Sample& s = held.front();
+bool SegmentWriter::Impl::at_rest(const Sample& s) const {
   for (int c = 0; c < channels; ++c) {
     const auto i = static_cast<std::size_t>(c);
     if (s.v[i] != 0.0 || s.a[i] != 0.0) return false;
   }
-  if (s.x[static_cast<std::size_t>(axes)] != 0.0) return false;
+  return s.x[static_cast<std::size_t>(axes)] == 0.0;
+}
+
+bool SegmentWriter::Impl::needs_anchor() const {
+  if (index == 0) return true;
+  // At rest (a stop at a block end, a dwell): exactly where the planner is, so stops are exact.
+  const Sample& s = held.front();
+  if (!at_rest(s)) return false;
   for (int c = 0; c < channels; ++c) {
     const auto i = static_cast<std::size_t>(c);
     if (state.d[i][0] != s.x[i]) return true;
@@ -381,6 +386,16 @@ void SegmentWriter::Impl::fit_piece(SegmentStats& stats) {
     if (held[static_cast<std::size_t>(m)].line == held[static_cast<std::size_t>(m - 1)].line) continue;
     if (++marks > KLL_MAX_MARKS) {
       limit = m;  // a piece of m cycles holds the marks before m
+      break;
+    }
+  }
+  // Stops are exact: a piece ends where the machine comes to rest and where it leaves rest, so
+  // that a rest is one anchor of degree 0 holding the planner's position.
+  for (int m = 1; m <= limit; ++m) {
+    const bool rest = at_rest(held[static_cast<std::size_t>(m)]);
+    if (rest && (!at_rest(held[static_cast<std::size_t>(m - 1)]) ||
+                 (static_cast<std::size_t>(m) + 1 < held.size() && !at_rest(held[static_cast<std::size_t>(m + 1)])))) {
+      limit = m;
       break;
     }
   }
