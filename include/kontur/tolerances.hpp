@@ -266,7 +266,10 @@ inline constexpr int blend_deviation_samples = 256;
 inline constexpr int check_blend_samples = 256;
 /// A setpoint without a move id (a file) farther than this from the move its line and the
 /// neighbouring moves suggest makes the checker search the nearest point of the whole path [mm].
-inline constexpr double check_resync_mm = 1e-7;
+/// The path tolerance of the check (1e-6 mm): a setpoint within it of its line's move stays on
+/// that move, so the lower level's replay (within 1e-6 mm of the planner's setpoints) is not taken
+/// to another move where the path crosses itself.
+inline constexpr double check_resync_mm = 1e-6;
 /// The checker accepts a blend whose deviation exceeds its tolerance by at most this, relative.
 inline constexpr double blend_deviation_relative = 1e-9;
 
@@ -276,6 +279,9 @@ inline constexpr double blend_deviation_relative = 1e-9;
 inline constexpr double segment_tolerance_mm = 1e-6;
 /// Longest piece of the stream [servo cycles]: also what the writer holds before it must fit.
 inline constexpr int segment_max_piece_cycles = 8192;
+/// Share of the segment tolerance the fit uses (the rest covers the planner's own distance from
+/// the path, ~1e-14 mm, so that a replay's check against the path stays within the tolerance).
+inline constexpr double segment_tolerance_share = 0.999;
 /// A piece of the stream ends within this share of the tolerance of the planner's setpoint (the
 /// next piece starts from there).
 inline constexpr double segment_end_share = 1e-3;

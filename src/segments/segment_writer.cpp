@@ -131,11 +131,14 @@ SegmentWriter::SegmentWriter(std::ostream& out, double period_s, const AxisLayou
   m.axes = layout.size();
   m.channels = m.axes + 1;
   m.options = options;
-  for (int c = 0; c < m.axes; ++c) m.tolerance[static_cast<std::size_t>(c)] = options.tolerance_mm;
+  // The fit keeps a share of the tolerance: the planner's own setpoints lie up to ~1e-14 mm off
+  // the path, and the sum must stay within the tolerance a check of the replay applies.
+  const double fit_mm = options.tolerance_mm * tolerances::segment_tolerance_share;
+  for (int c = 0; c < m.axes; ++c) m.tolerance[static_cast<std::size_t>(c)] = fit_mm;
   m.bounded = !options.bounds.empty();
   if (m.bounded && static_cast<int>(options.bounds.size()) != m.axes)
     throw std::invalid_argument("SegmentWriter: one AxisBounds per axis of the layout");
-  m.tolerance[static_cast<std::size_t>(m.axes)] = options.tolerance_mm / period_s;
+  m.tolerance[static_cast<std::size_t>(m.axes)] = fit_mm / period_s;
   m.write_header(stats_, layout);
 }
 
@@ -149,7 +152,7 @@ void SegmentWriter::Impl::write_header(SegmentStats& stats, const AxisLayout& la
   for (int i = 0; i < axes; ++i) h[16 + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(layout.letter(i));
   bytes::put_f64(h.data() + 32, period_s);
   bytes::put_f64(h.data() + 40, options.tolerance_mm);
-  bytes::put_f64(h.data() + 48, tolerance[static_cast<std::size_t>(axes)]);
+  bytes::put_f64(h.data() + 48, options.tolerance_mm / period_s);
   bytes::put_u32(h.data() + 60, kll_crc32(h.data(), 60));
   if (kll_open(&state, h.data(), h.size()) != KLL_OK)
     throw InputError("segment-header", "the segment stream's header cannot be read back (an axis count or period out of range)");
@@ -236,12 +239,17 @@ void SegmentWriter::Impl::solve(int n) {
     const double e3 = 10.0 * ra - 4.0 * rb + 0.5 * rc;
     const double e4 = -15.0 * ra + 7.0 * rb - rc;
     const double e5 = 6.0 * ra - 3.0 * rb + 0.5 * rc;
+    // Corrections far below the tolerance (a channel that does not move, a cubic stretch) are
+    // none: no values of 1e-40 in an axis that stands still.
+    const double negligible = 1e-6 * tolerance[i];
+    const bool none = std::abs(e3) <= negligible && std::abs(e4) <= negligible && std::abs(e5) <= negligible;
     Coeffs& k = coeffs[i];
     if (anchor) {
       k = base[i];
     } else {
       k.fill(0.0);
     }
+    if (none) continue;
     k[3] += e3 / (nd * nd * nd);
     k[4] += e4 / (nd * nd * nd * nd);
     k[5] += e5 / (nd * nd * nd * nd * nd);

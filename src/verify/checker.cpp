@@ -44,7 +44,9 @@ double project(const Curve& c, const std::vector<double>& bp, const Vec3& p, dou
   const double u_local = refine(c, p, std::max(c.u_min(), u_hint - h), std::min(c.u_max(), u_hint + 64 * h),
                                 std::clamp(u_hint, c.u_min(), c.u_max()));
   const double d_local = (c.point(u_local) - p).squaredNorm();
-  if (d_local <= 1e-24) return u_local;  // within 1e-12 mm
+  // Within the check's path tolerance (1e-6 mm) the local point is the setpoint's: a global
+  // search could land on another turn of a multi-turn arc, as near to within the rounding.
+  if (d_local <= 1e-12) return u_local;
   double best_u = c.u_min(), best_d = (c.point(best_u) - p).squaredNorm(), step = c.u_max() - c.u_min();
   for (std::size_t i = 0; i + 1 < bp.size(); ++i) {
     const double hs = (bp[i + 1] - bp[i]) / 16.0;
