@@ -102,26 +102,32 @@ int kll_open(kll_stream* s, const uint8_t* header, size_t size) {
 
 /* ---------------------------------------------------------------- records */
 
-/* Number of payload values of a record of `kind` and `degree` over `channels`. */
-static uint32_t payload_values(uint32_t kind, uint32_t degree, uint32_t channels) {
-  if (kind == KLL_KIND_ANCHOR) return channels * (degree + 1u);
-  if (kind == KLL_KIND_CONTINUE) return degree > 2u ? channels * (degree - 2u) : 0u;
-  return 0u;
+static uint32_t rd_u16(const uint8_t* p) { return (uint32_t)p[0] | ((uint32_t)p[1] << 8); }
+
+/* An unsigned LEB128 varint of at most 5 bytes at p[*at], p[limit] the first byte past the
+ * record's marks; 0 if it runs past or is too long. */
+static int rd_varint(const uint8_t* p, size_t limit, size_t* at, uint32_t* value) {
+  uint32_t v = 0;
+  int shift;
+  for (shift = 0; shift < 35; shift += 7) {
+    uint8_t b;
+    if (*at >= limit) return 0;
+    b = p[(*at)++];
+    v |= (uint32_t)(b & 0x7fu) << shift;
+    if ((b & 0x80u) == 0u) {
+      *value = v;
+      return 1;
+    }
+  }
+  return 0;
 }
 
-int kll_record_size(const kll_stream* s, const uint8_t* head, size_t size, size_t* record_size) {
-  uint32_t kind, degree, flags, marks, width;
+int kll_record_size(const uint8_t* head, size_t size, size_t* record_size) {
+  uint32_t n;
   if (size < KLL_RECORD_HEAD_SIZE) return KLL_ERR_SIZE;
-  kind = head[0];
-  degree = head[1];
-  flags = head[2];
-  marks = head[3];
-  if (kind < KLL_KIND_ANCHOR || kind > KLL_KIND_END || degree > (uint32_t)KLL_MAX_DEGREE ||
-      (flags & ~KLL_FLAG_FLOAT32) != 0u || marks > (uint32_t)KLL_MAX_MARKS)
-    return KLL_ERR_FORMAT;
-  width = (flags & KLL_FLAG_FLOAT32) ? 4u : 8u;
-  *record_size = KLL_RECORD_HEAD_SIZE + 8u * marks +
-                 (kind == KLL_KIND_END ? 8u : width * payload_values(kind, degree, s->channels)) + 4u;
+  n = rd_u16(head + 8);
+  if (n < KLL_RECORD_HEAD_SIZE + 4u || n > KLL_MAX_RECORD_SIZE) return KLL_ERR_FORMAT;
+  *record_size = n;
   return KLL_OK;
 }
 
@@ -134,66 +140,95 @@ static const double kll_power_differences[3][KLL_MAX_DEGREE + 1] = {
 
 int kll_feed(kll_stream* s, const uint8_t* record, size_t size) {
   size_t need = 0, at;
-  uint32_t kind, degree, f32, marks, cycles, i, c;
+  uint32_t kind, degree, flags, width, marks, cycles, mask, i, c, per_channel, nvalues = 0;
+  uint32_t offsets[KLL_MAX_MARKS];
+  int32_t lines[KLL_MAX_MARKS];
+  int32_t line;
   int r, k, finite = 1;
   double values[KLL_MAX_CHANNELS * (KLL_MAX_DEGREE + 1)];
   if (s->ended || s->remaining != 0u) return KLL_ERR_STATE;
-  r = kll_record_size(s, record, size, &need);
+  r = kll_record_size(record, size, &need);
   if (r != KLL_OK) return r;
   if (size < need) return KLL_ERR_SIZE;
   if (rd_u32(record + need - 4u) != kll_crc32(record, need - 4u)) return KLL_ERR_CHECKSUM;
-  if (rd_u32(record + 8) != s->next_index) return KLL_ERR_INDEX;
+  if (rd_u16(record + 6) != (s->next_index & 0xffffu)) return KLL_ERR_INDEX;
   kind = record[0];
   degree = record[1];
-  f32 = record[2] & KLL_FLAG_FLOAT32;
+  flags = record[2];
   marks = record[3];
-  cycles = rd_u32(record + 4);
+  cycles = rd_u16(record + 4);
+  mask = rd_u16(record + 10);
+  if (kind < KLL_KIND_ANCHOR || kind > KLL_KIND_END || degree > (uint32_t)KLL_MAX_DEGREE ||
+      (flags & ~(KLL_FLAG_FLOAT32 | KLL_FLAG_LINE)) != 0u || marks > (uint32_t)KLL_MAX_MARKS ||
+      (mask >> s->channels) != 0u)
+    return KLL_ERR_FORMAT;
   at = KLL_RECORD_HEAD_SIZE;
   if (kind == KLL_KIND_END) {
-    if (cycles != 0u || marks != 0u || degree != 0u) return KLL_ERR_FORMAT;
+    if (cycles != 0u || marks != 0u || degree != 0u || flags != 0u || mask != 0u ||
+        need != KLL_RECORD_HEAD_SIZE + 8u + 4u)
+      return KLL_ERR_FORMAT;
     if (rd_u64(record + at) != s->cycle) return KLL_ERR_COUNT;
     s->ended = 1;
     s->next_index += 1u;
     return KLL_OK;
   }
   if (cycles == 0u) return KLL_ERR_FORMAT;
-  /* The marks: offsets strictly increasing inside the piece. */
-  for (i = 0; i < marks; ++i) {
-    uint32_t off = rd_u32(record + at + 8u * i);
-    if (off == 0u || off >= cycles || (i > 0u && off <= rd_u32(record + at + 8u * (i - 1u)))) return KLL_ERR_FORMAT;
-  }
-  /* A continuation needs a state to continue. */
+  /* A continuation needs a state to continue; an anchor sets every channel. */
   if (kind == KLL_KIND_CONTINUE && s->next_index == 0u) return KLL_ERR_FORMAT;
-  {
-    uint32_t n = payload_values(kind, degree, s->channels), width = f32 ? 4u : 8u;
-    const uint8_t* p = record + at + 8u * marks;
-    for (i = 0; i < n; ++i) values[i] = rd_value(p + width * i, (int)f32, &finite);
-    if (!finite) return KLL_ERR_NOT_FINITE;
+  if (kind == KLL_KIND_ANCHOR && mask != (1u << s->channels) - 1u) return KLL_ERR_FORMAT;
+  line = s->line;
+  if (flags & KLL_FLAG_LINE) {
+    if (need < at + 4u) return KLL_ERR_FORMAT;
+    line = rd_i32(record + at);
+    at += 4u;
   }
+  /* The marks: offsets strictly increasing inside the piece, lines by zigzag steps. */
+  {
+    uint32_t offset = 0, step, zig;
+    int32_t mark_line = line;
+    for (i = 0; i < marks; ++i) {
+      if (!rd_varint(record, need - 4u, &at, &step) || !rd_varint(record, need - 4u, &at, &zig)) return KLL_ERR_FORMAT;
+      if (step == 0u || step >= cycles - offset) return KLL_ERR_FORMAT;
+      offset += step;
+      mark_line = (int32_t)((uint32_t)mark_line + ((zig >> 1) ^ (0u - (zig & 1u))));
+      offsets[i] = offset;
+      lines[i] = mark_line;
+    }
+  }
+  /* The values: every channel of the mask, (degree + 1) for an anchor, (degree - 2) to continue. */
+  per_channel = kind == KLL_KIND_ANCHOR ? degree + 1u : (degree > 2u ? degree - 2u : 0u);
+  for (c = 0; c < s->channels; ++c)
+    if (mask & (1u << c)) nvalues += per_channel;
+  width = (flags & KLL_FLAG_FLOAT32) ? 4u : 8u;
+  if (need != at + width * nvalues + 4u) return KLL_ERR_FORMAT;
+  for (i = 0; i < nvalues; ++i) values[i] = rd_value(record + at + width * i, width == 4u, &finite);
+  if (!finite) return KLL_ERR_NOT_FINITE;
   /* Valid: apply. */
   for (i = 0; i < marks; ++i) {
-    s->mark_offset[i] = rd_u32(record + at + 8u * i);
-    s->mark_line[i] = rd_i32(record + at + 8u * i + 4u);
+    s->mark_offset[i] = offsets[i];
+    s->mark_line[i] = lines[i];
   }
   s->mark_count = marks;
   s->next_mark = 0;
-  s->line = rd_i32(record + 12);
+  s->line = line;
   if (kind == KLL_KIND_ANCHOR) {
     for (c = 0; c < s->channels; ++c)
       for (k = 0; k <= KLL_MAX_DEGREE; ++k)
         s->d[c][k] = (uint32_t)k <= degree ? values[c * (degree + 1u) + (uint32_t)k] : 0.0;
     s->degree = degree;
-  } else if (degree > 2u) {
+  } else if (per_channel > 0u) {
     /* The same polynomial continued, plus dc_j m^j for j = 3..degree: its differences change by
      * dc_j times those of m^j. */
-    uint32_t free = degree - 2u, j;
+    const double* dc = values;
+    uint32_t j;
     for (c = 0; c < s->channels; ++c) {
-      const double* dc = values + c * free;
+      if (!(mask & (1u << c))) continue;
       for (k = 1; k <= KLL_MAX_DEGREE; ++k) {
         double delta = 0.0;
-        for (j = 0; j < free; ++j) delta += kll_power_differences[j][k] * dc[j];
+        for (j = 0; j < per_channel; ++j) delta += kll_power_differences[j][k] * dc[j];
         s->d[c][k] += delta;
       }
+      dc += per_channel;
     }
     if (degree > s->degree) s->degree = degree;
   }

@@ -26,12 +26,13 @@ extern "C" {
 #define KLL_MAX_AXES 9                       /* X Y Z A B C U V W */
 #define KLL_MAX_CHANNELS (KLL_MAX_AXES + 1)  /* the axes, then the path speed */
 #define KLL_MAX_DEGREE 5                     /* quintic pieces */
-#define KLL_MAX_MARKS 16                     /* source-line changes inside one piece */
+#define KLL_MAX_MARKS 64                     /* source-line changes inside one piece */
 #define KLL_HEADER_SIZE 64u                  /* bytes of the stream header */
-#define KLL_RECORD_HEAD_SIZE 16u             /* bytes of a record's fixed head */
-/* The largest record: head, marks, an anchor of every channel at the largest degree, checksum. */
+#define KLL_RECORD_HEAD_SIZE 12u             /* bytes of a record's fixed head (it gives the record's size) */
+/* The largest record: head, line, marks (two varints of at most 5 bytes each), an anchor of every
+ * channel at the largest degree, checksum. */
 #define KLL_MAX_RECORD_SIZE \
-  (KLL_RECORD_HEAD_SIZE + 8u * KLL_MAX_MARKS + 8u * KLL_MAX_CHANNELS * (KLL_MAX_DEGREE + 1) + 4u)
+  (KLL_RECORD_HEAD_SIZE + 4u + 10u * KLL_MAX_MARKS + 8u * KLL_MAX_CHANNELS * (KLL_MAX_DEGREE + 1) + 4u)
 
 /* Record kinds (byte 0 of a record). */
 #define KLL_KIND_ANCHOR 1u   /* new forward differences D0..Dp for every channel */
@@ -39,6 +40,7 @@ extern "C" {
 #define KLL_KIND_END 3u      /* no piece follows; carries the number of setpoints of the stream */
 /* Record flags (byte 2). */
 #define KLL_FLAG_FLOAT32 1u /* payload values are IEEE 754 binary32, else binary64 */
+#define KLL_FLAG_LINE 2u    /* an i32 source line for the piece's first setpoint follows the head */
 
 /* Results. Errors are negative; kll_feed() leaves the state unchanged on an error. */
 enum kll_result {
@@ -79,7 +81,7 @@ typedef struct {
 typedef struct {
   kll_header header;
   uint32_t channels;    /* header.axes + 1 */
-  uint32_t next_index;  /* index the next record must carry */
+  uint32_t next_index;  /* index of the next record (it carries the low 16 bits) */
   uint32_t remaining;   /* setpoints left in the current piece */
   uint32_t given;       /* setpoints given from the current piece */
   uint32_t degree;      /* highest non-zero difference order in the state */
@@ -98,8 +100,9 @@ uint32_t kll_crc32(const uint8_t* bytes, size_t n);
 /* Reads the 64-byte header and starts the state. */
 int kll_open(kll_stream* s, const uint8_t* header, size_t size);
 
-/* Size in bytes of the record whose first KLL_RECORD_HEAD_SIZE bytes are `head`. */
-int kll_record_size(const kll_stream* s, const uint8_t* head, size_t size, size_t* record_size);
+/* Size in bytes of the record whose first KLL_RECORD_HEAD_SIZE bytes are `head` (its field at
+ * byte 8, checked against the largest record). */
+int kll_record_size(const uint8_t* head, size_t size, size_t* record_size);
 
 /* Loads the next record (whole, `size` bytes) once kll_next() returned KLL_NEED_PIECE (or before
  * the first kll_next()). Checks its CRC-32, its index, its fields. */

@@ -84,7 +84,7 @@ SegmentStats replay_segments(std::istream& in, const std::string& name,
     if (in.gcount() == 0) refuse("the stream ends here, without its end record");
     if (static_cast<std::size_t>(in.gcount()) < KLL_RECORD_HEAD_SIZE) refuse(describe(KLL_ERR_SIZE));
     std::size_t size = 0;
-    if (const int e = kll_record_size(&s, record.data(), KLL_RECORD_HEAD_SIZE, &size); e != KLL_OK) refuse(describe(e));
+    if (const int e = kll_record_size(record.data(), KLL_RECORD_HEAD_SIZE, &size); e != KLL_OK) refuse(describe(e));
     in.read(reinterpret_cast<char*>(record.data() + KLL_RECORD_HEAD_SIZE),
             static_cast<std::streamsize>(size - KLL_RECORD_HEAD_SIZE));
     if (static_cast<std::size_t>(in.gcount()) != size - KLL_RECORD_HEAD_SIZE) refuse(describe(KLL_ERR_SIZE));

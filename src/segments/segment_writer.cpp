@@ -120,8 +120,8 @@ SegmentWriter::SegmentWriter(std::ostream& out, double period_s, const AxisLayou
                      fmt::format("the segment tolerance {} mm is below the smallest the lower level's rounding allows "
                                  "({} mm)",
                                  options.tolerance_mm, tolerances::segment_min_tolerance_mm));
-  if (options.max_piece_cycles < 1)
-    throw InputError("segment-piece", fmt::format("the longest piece must be at least 1 cycle, not {}",
+  if (options.max_piece_cycles < 1 || options.max_piece_cycles > 65535)
+    throw InputError("segment-piece", fmt::format("the longest piece must be 1 to 65535 cycles, not {}",
                                                   options.max_piece_cycles));
   if (!(period_s > 0.0) || !std::isfinite(period_s))
     throw InputError("segment-period", fmt::format("the servo period {} s is not positive", period_s));
@@ -196,9 +196,10 @@ void SegmentWriter::finish() {
   // The end record: the number of setpoints.
   m.record.assign(KLL_RECORD_HEAD_SIZE + 8 + 4, 0);
   m.record[0] = KLL_KIND_END;
-  bytes::put_u32(m.record.data() + 8, m.index);
-  bytes::put_u64(m.record.data() + 16, static_cast<std::uint64_t>(stats_.setpoints));
-  bytes::put_u32(m.record.data() + 24, kll_crc32(m.record.data(), 24));
+  bytes::put_u16(m.record.data() + 6, static_cast<std::uint16_t>(m.index & 0xffffu));
+  bytes::put_u16(m.record.data() + 8, static_cast<std::uint16_t>(m.record.size()));
+  bytes::put_u64(m.record.data() + KLL_RECORD_HEAD_SIZE, static_cast<std::uint64_t>(stats_.setpoints));
+  bytes::put_u32(m.record.data() + KLL_RECORD_HEAD_SIZE + 8, kll_crc32(m.record.data(), KLL_RECORD_HEAD_SIZE + 8));
   m.out->write(reinterpret_cast<const char*>(m.record.data()), static_cast<std::streamsize>(m.record.size()));
   stats_.bytes += m.record.size();
   ++m.index;
@@ -257,22 +258,28 @@ void SegmentWriter::Impl::solve(int n) {
 }
 
 void SegmentWriter::Impl::encode(int n, Encoding e) {
-  const std::size_t marks_at = KLL_RECORD_HEAD_SIZE;
   record.assign(KLL_RECORD_HEAD_SIZE, 0);
   record[0] = static_cast<std::uint8_t>(anchor ? KLL_KIND_ANCHOR : KLL_KIND_CONTINUE);
   record[1] = static_cast<std::uint8_t>(e.degree);
-  record[2] = static_cast<std::uint8_t>(e.f32 ? KLL_FLAG_FLOAT32 : 0u);
-  bytes::put_u32(record.data() + 4, static_cast<std::uint32_t>(n));
-  bytes::put_u32(record.data() + 8, index);
-  bytes::put_u32(record.data() + 12, static_cast<std::uint32_t>(static_cast<std::int32_t>(held.front().line)));
-  int marks = 0;
+  bytes::put_u16(record.data() + 4, static_cast<std::uint16_t>(n));
+  bytes::put_u16(record.data() + 6, static_cast<std::uint16_t>(index & 0xffffu));
+  std::uint8_t flags = e.f32 ? KLL_FLAG_FLOAT32 : 0u;
+  // The line of the first setpoint, when it is not the one the lower level already has.
+  if (index == 0 || held.front().line != state.line) {
+    flags |= KLL_FLAG_LINE;
+    record.resize(record.size() + 4);
+    bytes::put_u32(record.data() + KLL_RECORD_HEAD_SIZE, static_cast<std::uint32_t>(static_cast<std::int32_t>(held.front().line)));
+  }
+  record[2] = flags;
+  // The line changes inside the piece: offset step and line step, as varints.
+  int marks = 0, previous = 0;
   for (int m = 1; m < n; ++m) {
-    const long line = held[static_cast<std::size_t>(m)].line;
-    if (line == held[static_cast<std::size_t>(m - 1)].line) continue;
-    record.resize(record.size() + 8);
-    bytes::put_u32(record.data() + marks_at + 8 * static_cast<std::size_t>(marks), static_cast<std::uint32_t>(m));
-    bytes::put_u32(record.data() + marks_at + 8 * static_cast<std::size_t>(marks) + 4,
-                   static_cast<std::uint32_t>(static_cast<std::int32_t>(line)));
+    const long line = held[static_cast<std::size_t>(m)].line, before = held[static_cast<std::size_t>(m - 1)].line;
+    if (line == before) continue;
+    bytes::put_varint(record, static_cast<std::uint32_t>(m - previous));
+    const auto step = static_cast<std::int32_t>(static_cast<std::uint32_t>(line) - static_cast<std::uint32_t>(before));
+    bytes::put_varint(record, (static_cast<std::uint32_t>(step) << 1) ^ static_cast<std::uint32_t>(step >> 31));
+    previous = m;
     ++marks;
   }
   record[3] = static_cast<std::uint8_t>(marks);
@@ -286,10 +293,12 @@ void SegmentWriter::Impl::encode(int n, Encoding e) {
       bytes::put_f64(record.data() + at, v);
     }
   };
+  std::uint32_t mask = 0;
   for (int c = 0; c < channels; ++c) {
     const Coeffs& k = coeffs[static_cast<std::size_t>(c)];
     if (anchor) {
       // Newton's forward form of the polynomial cut to the degree: D_0 = c_0 exactly.
+      mask |= 1u << c;
       for (int d = 0; d <= e.degree; ++d) {
         double v = 0.0;
         for (int j = d; j <= e.degree; ++j)
@@ -297,9 +306,16 @@ void SegmentWriter::Impl::encode(int n, Encoding e) {
         put(d == 0 ? k[0] : v);
       }
     } else {
+      // A channel whose coefficients do not change carries no values.
+      bool changes = false;
+      for (int j = 3; j <= e.degree; ++j) changes = changes || k[static_cast<std::size_t>(j)] != 0.0;
+      if (!changes) continue;
+      mask |= 1u << c;
       for (int j = 3; j <= e.degree; ++j) put(k[static_cast<std::size_t>(j)]);
     }
   }
+  bytes::put_u16(record.data() + 10, static_cast<std::uint16_t>(mask));
+  bytes::put_u16(record.data() + 8, static_cast<std::uint16_t>(record.size() + 4));
   const std::size_t at = record.size();
   record.resize(at + 4);
   bytes::put_u32(record.data() + at, kll_crc32(record.data(), at));

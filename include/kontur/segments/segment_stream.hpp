@@ -43,7 +43,7 @@ struct SegmentOptions {
   /// Largest distance of a replayed tool point (X Y Z together) from the planner's [mm], and of
   /// each other axis [mm] or [deg]; the path speed gets this divided by the servo period [mm/s].
   double tolerance_mm = tolerances::segment_tolerance_mm;
-  /// Longest piece [servo cycles] (1 .. 2^31).
+  /// Longest piece [servo cycles] (1 .. 65535).
   int max_piece_cycles = tolerances::segment_max_piece_cycles;
   /// The limits of the layout's axes, in its order (empty: none). With them, no replayed
   /// setpoint's velocity, acceleration or jerk (backward differences) exceeds its limit where the
