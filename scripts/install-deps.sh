@@ -13,6 +13,7 @@ packages=(
   libtbb-dev  # OpenCASCADE's CMake targets name libtbb.so, which only the -dev package installs
   clang libclang-rt-14-dev  # the libFuzzer target of the G-code reader (fuzz/, docs/gcode.md)
   chromium    # the browser test of the HTML report (tests/browser), /usr/bin/chromium
+  gcc-arm-none-eabi  # the lower level's build for a Cortex-M4 (lower_level/build_cortex_m4.sh, a test)
 )
 # Node.js and npm: Debian's packages, unless a node and an npm are already there (a Node.js from
 # another source ships its own npm, which Debian's npm package would conflict with).

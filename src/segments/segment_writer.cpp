@@ -44,6 +44,11 @@ constexpr std::array<Coeffs, kDegree + 1> kNewtonToPower = {{
 struct Sample {
   std::array<double, kChannels> x{}, v{}, a{};
   long line = 0;
+  // Per axis, the largest backward difference of order 1, 2, 3 a replayed setpoint here may have
+  // [mm] ([deg]): the limit times T^k, or the planner's own difference where it is larger;
+  // `orders` of them apply (fewer at the start).
+  std::array<std::array<double, 3>, kChannels> allowed{};
+  int orders = 0;
 };
 
 // Value and first two derivatives of a power-basis polynomial at m.
@@ -85,14 +90,22 @@ struct SegmentWriter::Impl {
   std::array<Coeffs, kChannels> base{};  // the state's polynomial (power basis) at the piece's start
   std::vector<std::uint8_t> record;
   kll_stream trial{};
-  // The last three setpoints before the held ones: the planner's and the lower level's (for the
-  // backward differences of the limit check), oldest first; `history` of them are known.
-  std::array<std::array<double, kChannels>, 3> planned_before{}, replayed_before{};
-  int history = 0;
+  // The last three replayed setpoints before the held ones, newest first (the backward
+  // differences of the limit check), and the planner's last three setpoints written (for the
+  // allowed differences of each new sample); how many of each are known.
+  std::array<std::array<double, kChannels>, 3> replayed_before{}, planned_last{};
+  int planned_known = 0;
   bool bounded = false;
   bool enforce_limits = true;
-  // Backward differences of the candidate's replayed positions, and of the planner's.
-  std::array<std::array<double, kChannels>, 4> replay_window{}, plan_window{};
+  int last_length = 1;  // cycles of the last piece: where the search for the next starts
+  // Setpoints are numbered from 0 in the order written: held[0] is setpoint `held_first`. The
+  // numbers of the setpoints where the machine comes to rest or leaves it (a piece ends there)
+  // and of those whose line differs from the one before (a mark), not yet in a piece.
+  long held_first = 0;
+  std::deque<long> rest_edges, line_changes;
+  bool previous_rest = false;
+  // The candidate's replayed positions, newest first: [0] the setpoint being checked.
+  std::array<std::array<double, kChannels>, 4> replay_window{};
 
   void write_header(SegmentStats& stats, const AxisLayout& layout);
   void fit_piece(SegmentStats& stats);
@@ -175,6 +188,34 @@ void SegmentWriter::write(const trajectory::Setpoint& s) {
   x.v[sp] = s.a_mm_s2 * t;
   x.a[sp] = s.j_mm_s3 * t * t;
   x.line = s.source_line;
+  if (m.bounded) {
+    // What a replayed setpoint here may do: the limits, or the planner's own differences.
+    x.orders = std::min(m.planned_known, 3);
+    const auto& p1 = m.planned_last[0];
+    const auto& p2 = m.planned_last[1];
+    const auto& p3 = m.planned_last[2];
+    for (int c = 0; c < m.axes; ++c) {
+      const auto i = static_cast<std::size_t>(c);
+      const AxisBounds& b = m.options.bounds[i];
+      const double d[3] = {x.x[i] - p1[i], x.x[i] - 2 * p1[i] + p2[i], x.x[i] - 3 * p1[i] + 3 * p2[i] - p3[i]};
+      const double limit[3] = {b.max_velocity * t, b.max_acceleration * t * t, b.max_jerk * t * t * t};
+      for (std::size_t k = 0; k < 3; ++k) x.allowed[i][k] = std::max(limit[k], std::abs(d[k]));
+    }
+    m.planned_last[2] = m.planned_last[1];
+    m.planned_last[1] = m.planned_last[0];
+    m.planned_last[0] = x.x;
+    ++m.planned_known;
+  }
+  // Where pieces must end (rest edges) and where marks go (line changes), by setpoint number.
+  const long number = m.held_first + static_cast<long>(m.held.size());
+  const bool rest = m.at_rest(x);
+  if (number > 0) {
+    if (x.line != m.held.back().line) m.line_changes.push_back(number);
+    if (m.previous_rest && !rest && (m.rest_edges.empty() || m.rest_edges.back() != number - 1))
+      m.rest_edges.push_back(number - 1);  // leaves rest
+    if (rest && !m.previous_rest) m.rest_edges.push_back(number);  // comes to rest
+  }
+  m.previous_rest = rest;
   m.held.push_back(x);
   ++stats_.setpoints;
   // A piece needs the setpoint after its last (its end conditions): fit once the longest fits.
@@ -336,30 +377,19 @@ double SegmentWriter::Impl::error(const double* r, const Sample& s) const {
 }
 
 bool SegmentWriter::Impl::keeps_limits(int m, const double* r) {
-  // Shift the windows: [0] is the newest.
+  for (int k = 3; k > 0; --k) replay_window[static_cast<std::size_t>(k)] = replay_window[static_cast<std::size_t>(k - 1)];
+  std::array<double, kChannels>& w0 = replay_window[0];
+  for (int c = 0; c < axes; ++c) w0[static_cast<std::size_t>(c)] = r[c];
   const Sample& s = held[static_cast<std::size_t>(m)];
-  for (int k = 3; k > 0; --k) {
-    replay_window[static_cast<std::size_t>(k)] = replay_window[static_cast<std::size_t>(k - 1)];
-    plan_window[static_cast<std::size_t>(k)] = plan_window[static_cast<std::size_t>(k - 1)];
-  }
-  for (int c = 0; c < axes; ++c) {
-    replay_window[0][static_cast<std::size_t>(c)] = r[c];
-    plan_window[0][static_cast<std::size_t>(c)] = s.x[static_cast<std::size_t>(c)];
-  }
-  const int known = history + m + 1;  // setpoints in the windows
-  const double t = period_s;
+  const auto& w1 = replay_window[1];
+  const auto& w2 = replay_window[2];
+  const auto& w3 = replay_window[3];
   for (int c = 0; c < axes; ++c) {
     const auto i = static_cast<std::size_t>(c);
-    const AxisBounds& b = options.bounds[i];
-    auto over = [&](const std::array<std::array<double, kChannels>, 4>& w, int order) {
-      const double d = order == 1   ? w[0][i] - w[1][i]
-                       : order == 2 ? w[0][i] - 2 * w[1][i] + w[2][i]
-                                    : w[0][i] - 3 * w[1][i] + 3 * w[2][i] - w[3][i];
-      const double limit = order == 1 ? b.max_velocity * t : order == 2 ? b.max_acceleration * t * t : b.max_jerk * t * t * t;
-      return std::abs(d) / limit;
-    };
-    for (int order = 1; order <= 3 && order < known; ++order)
-      if (over(replay_window, order) > std::max(1.0, over(plan_window, order))) return false;
+    const auto& allowed = s.allowed[i];
+    if (s.orders >= 1 && std::abs(w0[i] - w1[i]) > allowed[0]) return false;
+    if (s.orders >= 2 && std::abs(w0[i] - 2 * w1[i] + w2[i]) > allowed[1]) return false;
+    if (s.orders >= 3 && std::abs(w0[i] - 3 * w1[i] + 3 * w2[i] - w3[i]) > allowed[2]) return false;
   }
   return true;
 }
@@ -371,10 +401,8 @@ double SegmentWriter::Impl::check(int n) {
   trial = state;
   if (kll_feed(&trial, record.data(), record.size()) != KLL_OK) return INFINITY;
   if (bounded)
-    for (int k = 0; k < 3; ++k) {  // (keeps_limits shifts them by one before it adds setpoint m)
-      replay_window[static_cast<std::size_t>(k)] = replayed_before[static_cast<std::size_t>(2 - k)];
-      plan_window[static_cast<std::size_t>(k)] = planned_before[static_cast<std::size_t>(2 - k)];
-    }
+    for (int k = 0; k < 3; ++k)  // (keeps_limits shifts them by one before it adds setpoint m)
+      replay_window[static_cast<std::size_t>(k)] = replayed_before[static_cast<std::size_t>(k)];
   kll_setpoint sp;
   std::array<double, kChannels> r{};
   double worst = 0.0;
@@ -405,24 +433,14 @@ double SegmentWriter::Impl::check(int n) {
 void SegmentWriter::Impl::fit_piece(SegmentStats& stats) {
   // The longest piece the setpoints held and the marks allow.
   int limit = static_cast<int>(std::min<std::size_t>(held.size() - 1, static_cast<std::size_t>(options.max_piece_cycles)));
-  int marks = 0;
-  for (int m = 1; m < limit; ++m) {
-    if (held[static_cast<std::size_t>(m)].line == held[static_cast<std::size_t>(m - 1)].line) continue;
-    if (++marks > KLL_MAX_MARKS) {
-      limit = m;  // a piece of m cycles holds the marks before m
-      break;
-    }
-  }
+  while (!line_changes.empty() && line_changes.front() <= held_first) line_changes.pop_front();
+  while (!rest_edges.empty() && rest_edges.front() <= held_first) rest_edges.pop_front();
+  // At most KLL_MAX_MARKS line changes inside the piece: it ends before the next one.
+  if (line_changes.size() > static_cast<std::size_t>(KLL_MAX_MARKS))
+    limit = std::min(limit, static_cast<int>(line_changes[KLL_MAX_MARKS] - held_first));
   // Stops are exact: a piece ends where the machine comes to rest and where it leaves rest, so
   // that a rest is one anchor of degree 0 holding the planner's position.
-  for (int m = 1; m <= limit; ++m) {
-    const bool rest = at_rest(held[static_cast<std::size_t>(m)]);
-    if (rest && (!at_rest(held[static_cast<std::size_t>(m - 1)]) ||
-                 (static_cast<std::size_t>(m) + 1 < held.size() && !at_rest(held[static_cast<std::size_t>(m + 1)])))) {
-      limit = m;
-      break;
-    }
-  }
+  if (!rest_edges.empty()) limit = std::min(limit, static_cast<int>(rest_edges.front() - held_first));
   anchor = needs_anchor();
   auto set_base = [&] {
     const Sample& s = held.front();
@@ -451,9 +469,17 @@ void SegmentWriter::Impl::fit_piece(SegmentStats& stats) {
   }
   int lo = 1;
   if (fits(1)) {
-    // Doubling, then bisection, for the longest piece within the tolerance.
-    while (2 * lo <= limit && fits(2 * lo)) lo *= 2;
-    int hi = std::min(2 * lo, limit + 1);
+    // The longest piece within the tolerance: from the last piece's length (neighbouring pieces
+    // are alike), doubling up or halving down, then bisection.
+    int hi = limit + 1;  // the shortest length known not to fit (or past the limit)
+    int guess = std::clamp(last_length, 1, limit);
+    if (guess > 1 && !fits(guess)) {
+      hi = guess;
+      for (guess /= 2; guess > 1 && !fits(guess); guess /= 2) hi = guess;
+    }
+    lo = std::max(guess, 1);
+    while (2 * lo < hi && fits(2 * lo)) lo *= 2;
+    hi = std::min(hi, 2 * lo);
     while (hi - lo > 1) {
       const int mid = lo + (hi - lo) / 2;
       (fits(mid) ? lo : hi) = mid;
@@ -472,6 +498,7 @@ void SegmentWriter::Impl::fit_piece(SegmentStats& stats) {
     ++stats.limit_fallbacks;
   }
   const int n = lo;
+  last_length = n;
   solve(n);
   // The fewest bytes that still fit.
   static constexpr std::array<Encoding, 5> continuations = {{{2, false}, {3, true}, {3, false}, {5, true}, {5, false}}};
@@ -502,16 +529,10 @@ void SegmentWriter::Impl::fit_piece(SegmentStats& stats) {
     }
     stats.max_error_mm = std::max(stats.max_error_mm, std::sqrt(tool));
     stats.max_speed_error_mm_s = std::max(stats.max_speed_error_mm_s, std::abs(sp.speed_mm_s - s.x[static_cast<std::size_t>(axes)]));
-    // The history of the limit check: oldest first.
-    planned_before[0] = planned_before[1];
-    planned_before[1] = planned_before[2];
-    replayed_before[0] = replayed_before[1];
-    replayed_before[1] = replayed_before[2];
-    for (int c = 0; c < axes; ++c) {
-      planned_before[2][static_cast<std::size_t>(c)] = s.x[static_cast<std::size_t>(c)];
-      replayed_before[2][static_cast<std::size_t>(c)] = sp.position[static_cast<std::size_t>(c)];
-    }
-    history = std::min(history + 1, 3);
+    // The history of the limit check, newest first.
+    replayed_before[2] = replayed_before[1];
+    replayed_before[1] = replayed_before[0];
+    for (int c = 0; c < axes; ++c) replayed_before[0][static_cast<std::size_t>(c)] = sp.position[static_cast<std::size_t>(c)];
   }
   out->write(reinterpret_cast<const char*>(record.data()), static_cast<std::streamsize>(record.size()));
   stats.bytes += record.size();
@@ -521,6 +542,7 @@ void SegmentWriter::Impl::fit_piece(SegmentStats& stats) {
   ++stats.by_degree[static_cast<std::size_t>(chosen.degree)];
   ++index;
   held.erase(held.begin(), held.begin() + n);
+  held_first += n;
 }
 
 std::vector<AxisBounds> axis_bounds(const Machine& machine, const AxisLayout& layout) {
