@@ -68,7 +68,10 @@ void register_verify_command(CLI::App& app, int& exit_code) {
       "independently of the planner: axis velocity, acceleration and jerk by finite differences, the "
       "distance of setpoints and chords from the path, the start and the end.");
   cmd->add_option("PROGRAM", o->program, "part program (G-code) the setpoints should follow")->required();
-  cmd->add_option("SETPOINTS", o->setpoints, "setpoint file: CSV (t,x,y,z,v,block) or binary (KONTURSP)")->required();
+  cmd->add_option("SETPOINTS", o->setpoints,
+                  "setpoint file: CSV (t,x,y,z,v,block), binary (KONTURSP), or a segment stream (KONTURSG, replayed by "
+                  "the lower level)")
+      ->required();
   cmd->add_option("--machine", o->machine, "machine file: Kontur TOML, or LinuxCNC INI (default: embedded)");
   cmd->add_option("--summary", o->summary,
                   "JSON summary file, per program and per block (default: stderr); - for stdout");

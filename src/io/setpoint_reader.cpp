@@ -9,6 +9,7 @@
 #include <kontur/error.hpp>
 #include <kontur/io/setpoint_reader.hpp>
 #include <kontur/io/setpoint_writer.hpp>
+#include <kontur/segments/segment_stream.hpp>
 #include <optional>
 #include <string_view>
 
@@ -161,8 +162,23 @@ SetpointHeader for_each_setpoint(const std::string& path, const SetpointVisitor&
   in.read(magic.data(), 8);
   const bool binary =
       in.gcount() == 8 && std::string_view(magic.data(), 8) == std::string_view(setpoint_binary_magic, 8);
+  const bool stream =
+      in.gcount() == 8 && std::string_view(magic.data(), 8) == std::string_view(segments::segment_stream_magic, 8);
   in.clear();
   in.seekg(0);
+  if (stream) {
+    // A segment stream: the lower level makes its setpoints (docs/segments.md).
+    SetpointHeader h;
+    segments::replay_segments(
+        in, path,
+        [&](const segments::SegmentHeader& sh) {
+          h.period_s = sh.period_s;
+          h.layout = sh.layout;
+          if (header) header(h);
+        },
+        visit);
+    return h;
+  }
   return binary ? read_binary(in, path, visit, header) : read_csv(in, path, visit, header);
 }
 

@@ -214,3 +214,14 @@ kontur_cli_case(check_tool_table_missing 1 "no-such\\.tbl: tool-table: cannot op
                 tests/data/gcode/good/tool_length.ngc --tool-table no-such.tbl)
 kontur_cli_case(run_cutter_compensation 0 "\"passed\": true" run tests/data/gcode/good/cutter_compensation.ngc
                 --tool-table tests/data/tools/mill.tbl -o /tmp/kontur_cli_comp.csv --summary -)
+
+# The segment stream (docs/segments.md): run -> replay -> verify, a stream verified directly, and
+# streams refused.
+add_test(NAME cli_segments_round_trip
+         COMMAND ${CMAKE_COMMAND} -DKONTUR=$<TARGET_FILE:kontur_app> -DWORKDIR=${PROJECT_SOURCE_DIR}
+                 -DOUT=${CMAKE_CURRENT_BINARY_DIR}/segments_round_trip -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/segments_round_trip.cmake)
+kontur_cli_case(replay_missing_file 1 "no-such\\.seg: cannot open the segment stream" replay no-such.seg)
+kontur_cli_case(replay_not_a_stream 1 "square_arc\\.ngc: the header \\(64 bytes\\): it does not start with KONTURSG" replay
+                examples/programs/square_arc.ngc)
+kontur_cli_case(run_segment_tolerance_too_small 1 "segment tolerance 1e-12 mm is below" run examples/programs/square_arc.ngc
+                --format segments --segment-tolerance 1e-12 -o -)

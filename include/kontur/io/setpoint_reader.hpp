@@ -36,6 +36,7 @@ using HeaderVisitor = std::function<void(const SetpointHeader&)>;
 SetpointHeader for_each_setpoint(const std::string& path, const SetpointVisitor& visit,
                                  const HeaderVisitor& header = {});
 
+/// (A segment stream, `KONTURSG`, docs/segments.md, is replayed by the lower level.)
 /// Reads a CSV (header `t,x,y,z,v,block`, or with more axes `t,x,y,z,a,v,block`: x y z and any
 /// of a b c u v w in that order) or binary (`KONTURSP`, version 1 or 2) setpoint file; the format
 /// is recognised by its first bytes. Throws InputError naming the file, the line (CSV) or record
