@@ -21,7 +21,7 @@ row() {  # program period-label machine
       -o "$work/$key.seg" --summary "$work/$key.json" --quiet 2>/dev/null || rc=$?
   if [ ! -f "$work/$key.json" ]; then echo "$p $label run-exit=$rc"; return; fi
   local verdict=-
-  if [ -f "$work/$key.seg" ]; then
+  if [ -f "$work/$key.seg" ] && ! grep -q "\"setpoints\": 0," "$work/$key.json"; then
     "$kontur" replay "$work/$key.seg" -o "$work/$key.bin" --format binary --quiet
     verdict=fail
     "$kontur" verify "$gcode/$p" "$work/$key.bin" --machine "$machine" --quiet --summary "$work/$key.v.json" && verdict=pass
@@ -29,6 +29,8 @@ row() {  # program period-label machine
   /usr/bin/python3 - "$work/$key.json" "$p" "$label" "$verdict" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1])); s = d["segments"]
+if d["setpoints"] == 0:
+    print(f'{sys.argv[2]} {sys.argv[3]} no motion'); sys.exit(0)
 print(f'{sys.argv[2]} {sys.argv[3]} setpoints={d["setpoints"]} pieces={s["pieces"]} bytes={s["bytes"]} '
       f'bytes_per_s={s["bytes_per_second"]:.0f} ratio={s["size_ratio_to_binary"]:.2f} '
       f'max_error_mm={s["max_error_mm"]:.3g} replay_verify={sys.argv[4]}')

@@ -364,14 +364,24 @@ void SegmentWriter::Impl::encode(int n, Encoding e) {
 
 double SegmentWriter::Impl::error(const double* r, const Sample& s) const {
   // The tool point X Y Z together (the layout starts with them), every other channel alone.
-  double tool = 0.0, worst = 0.0;
-  for (int c = 0; c < channels; ++c) {
+  double tool = 0.0, worst = 0.0, along = 0.0, speed2 = 0.0;
+  for (int c = 0; c < 3 && c < axes; ++c) {
     const auto i = static_cast<std::size_t>(c);
-    const double e = std::abs(r[i] - s.x[i]);
-    if (c < 3)
-      tool += e * e;
-    else
-      worst = std::max(worst, e / tolerance[i]);
+    const double e = r[i] - s.x[i];
+    tool += e * e;
+    along += e * s.v[i];
+    speed2 += s.v[i] * s.v[i];
+  }
+  // A replayed tool point off along the path by dt cycles is where the planner's was dt cycles
+  // later: an extra axis must be off by its own velocity times dt, or a check that places the
+  // extra axes from the tool point's distance along the move sees the difference. Both errors
+  // count.
+  const double dt = speed2 > 0.0 ? along / speed2 : 0.0;
+  for (int c = 3; c < channels; ++c) {
+    const auto i = static_cast<std::size_t>(c);
+    const double e = r[i] - s.x[i];
+    worst = std::max(worst, std::abs(e) / tolerance[i]);
+    if (c < axes) worst = std::max(worst, std::abs(e - s.v[i] * dt) / tolerance[i]);
   }
   return std::max(worst, std::sqrt(tool) / tolerance[0]);
 }
