@@ -85,27 +85,36 @@ const Run* planned(const std::string& program, double period_s) {
   return cache.back().second.get();
 }
 
-// Replays the whole stream with the lower level; calls f(sp) for every setpoint.
-template <class F>
-void replay(const std::string& stream, F&& f) {
-  kll_stream s;
-  const auto* data = reinterpret_cast<const std::uint8_t*>(stream.data());
-  kll_open(&s, data, stream.size());
-  std::size_t at = KLL_HEADER_SIZE;
-  kll_setpoint sp;
-  for (;;) {
-    const int r = kll_next(&s, &sp);
-    if (r == KLL_SETPOINT) {
-      f(sp);
-      continue;
-    }
-    if (r != KLL_NEED_PIECE) return;
-    std::size_t size = 0;
-    kll_record_size(data + at, stream.size() - at, &size);
-    kll_feed(&s, data + at, size);
-    at += size;
+// The lower level over a whole stream in memory, fed record by record as it asks (as a
+// controller's ring buffer would feed it).
+class Cursor {
+ public:
+  explicit Cursor(const std::string& stream)
+      : data_(reinterpret_cast<const std::uint8_t*>(stream.data())), size_(stream.size()) {
+    kll_open(&s_, data_, size_);
   }
-}
+  /// The next setpoint (feeding a record first when the piece is used up); false at the end.
+  bool next(kll_setpoint& sp) {
+    for (;;) {
+      const int r = kll_next(&s_, &sp);
+      if (r == KLL_SETPOINT) return true;
+      if (r != KLL_NEED_PIECE) return false;
+      std::size_t size = 0;
+      kll_record_size(data_ + at_, size_ - at_, &size);
+      kll_feed(&s_, data_ + at_, size);
+      at_ += size;
+      ++fed_;
+    }
+  }
+  [[nodiscard]] const kll_stream& state() const noexcept { return s_; }
+  [[nodiscard]] long fed() const noexcept { return fed_; }
+
+ private:
+  kll_stream s_{};
+  const std::uint8_t* data_;
+  std::size_t size_, at_ = KLL_HEADER_SIZE;
+  long fed_ = 0;
+};
 
 void BM_LowerLevel(benchmark::State& state, const std::string& program, double period_s) {
   const Run* run = planned(program, period_s);
@@ -117,54 +126,31 @@ void BM_LowerLevel(benchmark::State& state, const std::string& program, double p
   long n = 0;
   for (auto _ : state) {
     const double c0 = bench::thread_cpu_ns();
-    replay(run->stream, [&](const kll_setpoint& sp) { sum += sp.position[0]; });
+    Cursor cursor(run->stream);
+    kll_setpoint sp;
+    while (cursor.next(sp)) sum += sp.position[0];
     cpu_ns += bench::thread_cpu_ns() - c0;
     n += static_cast<long>(run->setpoints.size());
   }
   benchmark::DoNotOptimize(sum);
-  // Per call, timed one by one.
+  // Per call, timed one by one (a call that feeds a record includes it).
   const auto times = bench::repeated_call_times(5, [&](std::vector<double>& ns) {
-    kll_stream s;
-    const auto* data = reinterpret_cast<const std::uint8_t*>(run->stream.data());
-    kll_open(&s, data, run->stream.size());
-    std::size_t at = KLL_HEADER_SIZE;
+    Cursor cursor(run->stream);
     kll_setpoint sp;
     for (;;) {
       const auto a = bench::Clock::now();
-      const int r = kll_next(&s, &sp);
+      const bool more = cursor.next(sp);
       const auto b = bench::Clock::now();
-      if (r == KLL_SETPOINT) {
-        ns.push_back(bench::ns_between(a, b));
-        continue;
-      }
-      if (r != KLL_NEED_PIECE) break;
-      std::size_t size = 0;
-      kll_record_size(data + at, run->stream.size() - at, &size);
-      kll_feed(&s, data + at, size);
-      at += size;
+      if (!more) break;
+      ns.push_back(bench::ns_between(a, b));
     }
   });
   // Additions per setpoint: the state's degree times the channels, averaged over the stream.
   double additions = 0.0;
   {
-    kll_stream s;
-    const auto* data = reinterpret_cast<const std::uint8_t*>(run->stream.data());
-    kll_open(&s, data, run->stream.size());
-    std::size_t at = KLL_HEADER_SIZE;
+    Cursor cursor(run->stream);
     kll_setpoint sp;
-    for (;;) {
-      const std::uint32_t adds = s.degree * s.channels;
-      const int r = kll_next(&s, &sp);
-      if (r == KLL_SETPOINT) {
-        additions += adds;
-        continue;
-      }
-      if (r != KLL_NEED_PIECE) break;
-      std::size_t size = 0;
-      kll_record_size(data + at, run->stream.size() - at, &size);
-      kll_feed(&s, data + at, size);
-      at += size;
-    }
+    while (cursor.next(sp)) additions += cursor.state().degree * cursor.state().channels;
   }
   const double count = static_cast<double>(run->setpoints.size());
   state.counters["ns_per_setpoint"] = cpu_ns / static_cast<double>(n);
@@ -193,35 +179,28 @@ void BM_DirectPolynomial(benchmark::State& state, const std::string& program, do
     std::array<std::array<double, 6>, KLL_MAX_CHANNELS> c{};
     std::uint32_t cycles = 0, channels = 0;
   };
-  static constexpr std::array<std::array<double, 6>, 6> newton_to_power = {{
-      {1, 0, 0, 0, 0, 0},
-      {0, 1, 0, 0, 0, 0},
-      {0, -1.0 / 2, 1.0 / 2, 0, 0, 0},
-      {0, 2.0 / 6, -3.0 / 6, 1.0 / 6, 0, 0},
-      {0, -6.0 / 24, 11.0 / 24, -6.0 / 24, 1.0 / 24, 0},
-      {0, 24.0 / 120, -50.0 / 120, 35.0 / 120, -10.0 / 120, 1.0 / 120},
-  }};
   std::vector<Piece> pieces;
   {
-    kll_stream s;
-    const auto* data = reinterpret_cast<const std::uint8_t*>(run->stream.data());
-    kll_open(&s, data, run->stream.size());
-    std::size_t at = KLL_HEADER_SIZE;
+    Cursor cursor(run->stream);
     kll_setpoint sp;
-    for (;;) {
-      const int r = kll_next(&s, &sp);
-      if (r == KLL_SETPOINT) continue;
-      if (r != KLL_NEED_PIECE) break;
-      std::size_t size = 0;
-      kll_record_size(data + at, run->stream.size() - at, &size);
-      kll_feed(&s, data + at, size);
-      at += size;
+    long fed = 0;
+    while (cursor.next(sp)) {
+      if (cursor.fed() == fed) continue;
+      // A piece was fed: its polynomial from the state at its first setpoint (already stepped once).
+      fed = cursor.fed();
+      const kll_stream& s = cursor.state();
       Piece p;
-      p.cycles = s.remaining;
+      p.cycles = s.remaining + 1;
       p.channels = s.channels;
-      for (std::uint32_t ch = 0; ch < s.channels; ++ch)
+      for (std::uint32_t ch = 0; ch < s.channels; ++ch) {
+        // The differences at the piece's first setpoint: one step back, D_k(0) = D_k(1) - D_(k+1)(0).
+        std::array<double, 6> d{};
+        for (int k = 0; k <= 5; ++k) d[static_cast<std::size_t>(k)] = s.d[ch][k];
+        for (int k = 4; k >= 0; --k) d[static_cast<std::size_t>(k)] -= d[static_cast<std::size_t>(k + 1)];
         for (int k = 0; k <= 5; ++k)
-          for (int j = 0; j <= k; ++j) p.c[ch][static_cast<std::size_t>(j)] += s.d[ch][k] * newton_to_power[k][j];
+          for (int j = 0; j <= k; ++j)
+            p.c[ch][static_cast<std::size_t>(j)] += d[static_cast<std::size_t>(k)] * segments::newton_to_power[static_cast<std::size_t>(k)][static_cast<std::size_t>(j)];
+      }
       pieces.push_back(p);
     }
   }

@@ -21,7 +21,7 @@ row() {  # program period-label machine
       -o "$work/$key.seg" --summary "$work/$key.json" --quiet 2>/dev/null || rc=$?
   if [ ! -f "$work/$key.json" ]; then echo "$p $label run-exit=$rc"; return; fi
   local verdict=-
-  if [ -f "$work/$key.seg" ] && ! grep -q "\"setpoints\": 0," "$work/$key.json"; then
+  if [ -f "$work/$key.seg" ]; then
     "$kontur" replay "$work/$key.seg" -o "$work/$key.bin" --format binary --quiet
     verdict=fail
     "$kontur" verify "$gcode/$p" "$work/$key.bin" --machine "$machine" --quiet --summary "$work/$key.v.json" && verdict=pass

@@ -29,16 +29,6 @@ constexpr std::array<Coeffs, kDegree + 1> kPowerToNewton = {{
     {0, 1, 14, 36, 24, 0},
     {0, 1, 30, 150, 240, 120},
 }};
-// binom(m, k) = sum_j kNewtonToPower[k][j] m^j (Stirling numbers of the first kind over k!).
-constexpr std::array<Coeffs, kDegree + 1> kNewtonToPower = {{
-    {1, 0, 0, 0, 0, 0},
-    {0, 1, 0, 0, 0, 0},
-    {0, -1.0 / 2, 1.0 / 2, 0, 0, 0},
-    {0, 2.0 / 6, -3.0 / 6, 1.0 / 6, 0, 0},
-    {0, -6.0 / 24, 11.0 / 24, -6.0 / 24, 1.0 / 24, 0},
-    {0, 24.0 / 120, -50.0 / 120, 35.0 / 120, -10.0 / 120, 1.0 / 120},
-}};
-
 // One setpoint in the writer's units: per channel (the axes, then the path speed) the value, its
 // first and second derivative per servo cycle (velocity * T, acceleration * T^2).
 struct Sample {
@@ -466,7 +456,7 @@ void SegmentWriter::Impl::fit_piece(SegmentStats& stats) {
         for (int k = 0; k <= kDegree; ++k)
           for (int j = 0; j <= k; ++j)
             b[static_cast<std::size_t>(j)] += state.d[i][static_cast<std::size_t>(k)] *
-                                              kNewtonToPower[static_cast<std::size_t>(k)][static_cast<std::size_t>(j)];
+                                              newton_to_power[static_cast<std::size_t>(k)][static_cast<std::size_t>(j)];
       }
     }
   };

@@ -110,6 +110,17 @@ SegmentStats replay_segments(std::istream& in, const std::string& name,
                              const std::function<void(const SegmentHeader&)>& header,
                              const std::function<void(const trajectory::Setpoint&)>& visit);
 
+/// Newton's forward form to the power basis: binom(m, k) = sum_j newton_to_power[k][j] m^j
+/// (Stirling numbers of the first kind over k!), k, j = 0..5.
+inline constexpr std::array<std::array<double, 6>, 6> newton_to_power = {{
+    {1, 0, 0, 0, 0, 0},
+    {0, 1, 0, 0, 0, 0},
+    {0, -1.0 / 2, 1.0 / 2, 0, 0, 0},
+    {0, 2.0 / 6, -3.0 / 6, 1.0 / 6, 0, 0},
+    {0, -6.0 / 24, 11.0 / 24, -6.0 / 24, 1.0 / 24, 0},
+    {0, 24.0 / 120, -50.0 / 120, 35.0 / 120, -10.0 / 120, 1.0 / 120},
+}};
+
 /// The eight bytes a segment stream starts with.
 inline constexpr char segment_stream_magic[9] = "KONTURSG";
 
