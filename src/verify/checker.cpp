@@ -44,9 +44,7 @@ double project(const Curve& c, const std::vector<double>& bp, const Vec3& p, dou
   const double u_local = refine(c, p, std::max(c.u_min(), u_hint - h), std::min(c.u_max(), u_hint + 64 * h),
                                 std::clamp(u_hint, c.u_min(), c.u_max()));
   const double d_local = (c.point(u_local) - p).squaredNorm();
-  // Within the check's path tolerance (1e-6 mm) the local point is the setpoint's: a global
-  // search could land on another turn of a multi-turn arc, as near to within the rounding.
-  if (d_local <= 1e-12) return u_local;
+  if (d_local <= 1e-24) return u_local;  // within 1e-12 mm
   double best_u = c.u_min(), best_d = (c.point(best_u) - p).squaredNorm(), step = c.u_max() - c.u_min();
   for (std::size_t i = 0; i + 1 < bp.size(); ++i) {
     const double hs = (bp[i + 1] - bp[i]) / 16.0;
@@ -61,7 +59,12 @@ double project(const Curve& c, const std::vector<double>& bp, const Vec3& p, dou
     }
   }
   const double u_global = refine(c, p, std::max(c.u_min(), best_u - step), std::min(c.u_max(), best_u + step), best_u);
-  return (c.point(u_global) - p).squaredNorm() < d_local ? u_global : u_local;
+  // The global point replaces the local one only when the local one is more than 1e-9 mm off and
+  // the global one is clearly nearer (at most half the distance): where the path passes a place
+  // twice (a multi-turn arc), the other pass may be nearer by the rounding, and jumping there
+  // would break the order of the setpoints along the move.
+  const double d_global = (c.point(u_global) - p).squaredNorm();
+  return d_local > 1e-18 && d_global < 0.25 * d_local ? u_global : u_local;
 }
 
 // One more deviation [mm] from a programmed shape with its tolerance [mm]: the largest deviation,
