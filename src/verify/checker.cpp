@@ -59,12 +59,11 @@ double project(const Curve& c, const std::vector<double>& bp, const Vec3& p, dou
     }
   }
   const double u_global = refine(c, p, std::max(c.u_min(), best_u - step), std::min(c.u_max(), best_u + step), best_u);
-  // The global point replaces the local one only when the local one is more than 1e-9 mm off and
-  // the global one is clearly nearer (at most half the distance): where the path passes a place
-  // twice (a multi-turn arc), the other pass may be nearer by the rounding, and jumping there
-  // would break the order of the setpoints along the move.
-  const double d_global = (c.point(u_global) - p).squaredNorm();
-  return d_local > 1e-18 && d_global < 0.25 * d_local ? u_global : u_local;
+  // The global point replaces the local one only when it is nearer by more than 1e-9 mm: where
+  // the path passes a place twice (a multi-turn arc), the other pass may be nearer by the
+  // rounding, and jumping there would break the order of the setpoints along the move.
+  const double d_global = (c.point(u_global) - p).norm();
+  return d_global < std::sqrt(d_local) - 1e-9 ? u_global : u_local;
 }
 
 // One more deviation [mm] from a programmed shape with its tolerance [mm]: the largest deviation,
