@@ -206,7 +206,10 @@ int kll_feed(kll_stream* s, const uint8_t* record, size_t size) {
     if (mask & (1u << c)) nvalues += per_channel;
   width = (flags & KLL_FLAG_FLOAT32) ? 4u : 8u;
   if (need != at + width * nvalues + 4u) return KLL_ERR_FORMAT;
-  for (i = 0; i < nvalues; ++i) values[i] = rd_value(record + at + width * i, width == 4u, &finite);
+  for (i = 0; i < nvalues; ++i) {
+    values[i] = rd_value(record + at + width * i, width == 4u, &finite);
+    if (!(values[i] <= KLL_MAX_VALUE && values[i] >= -KLL_MAX_VALUE)) finite = 0;
+  }
   if (!finite) return KLL_ERR_NOT_FINITE;
   /* Valid: apply. */
   for (i = 0; i < marks; ++i) {

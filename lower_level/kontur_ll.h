@@ -34,6 +34,10 @@ extern "C" {
 #define KLL_MAX_RECORD_SIZE \
   (KLL_RECORD_HEAD_SIZE + 4u + 10u * KLL_MAX_MARKS + 8u * KLL_MAX_CHANNELS * (KLL_MAX_DEGREE + 1) + 4u)
 
+/* The largest magnitude of a value in a record ([mm], [deg], [mm/s] or their differences): with it
+ * no piece of at most 65535 cycles can overflow a double. */
+#define KLL_MAX_VALUE 1e12
+
 /* Record kinds (byte 0 of a record). */
 #define KLL_KIND_ANCHOR 1u   /* new forward differences D0..Dp for every channel */
 #define KLL_KIND_CONTINUE 2u /* the same position, velocity and acceleration; new 3rd..pth coefficients */
@@ -56,7 +60,7 @@ enum kll_result {
   KLL_ERR_SIZE = -6,      /* fewer bytes than the record or header needs */
   KLL_ERR_STATE = -7,     /* a record fed while the current piece still has setpoints, or after the end */
   KLL_ERR_COUNT = -8,     /* the end record's setpoint count differs from the setpoints given */
-  KLL_ERR_NOT_FINITE = -9 /* a value is a NaN or an infinity */
+  KLL_ERR_NOT_FINITE = -9 /* a value is a NaN, an infinity or larger than KLL_MAX_VALUE */
 };
 
 /* The stream header, as read. */

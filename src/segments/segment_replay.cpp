@@ -23,7 +23,7 @@ const char* describe(int result) {
     case KLL_ERR_SIZE: return "it is cut short";
     case KLL_ERR_STATE: return "it comes after the end record";
     case KLL_ERR_COUNT: return "the end record's setpoint count differs from the setpoints the pieces make";
-    case KLL_ERR_NOT_FINITE: return "a coefficient is a NaN or an infinity";
+    case KLL_ERR_NOT_FINITE: return "a coefficient is a NaN, an infinity or beyond 1e12";
     default: return "it cannot be read";
   }
 }
