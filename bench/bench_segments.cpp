@@ -18,6 +18,7 @@
 // Programs from ../shared/data/gcode: skipped with a note when absent.
 #include <benchmark/benchmark.h>
 #include <kontur/error.hpp>
+#include <kontur/io/setpoint_writer.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/pipeline.hpp>
 #include <kontur/segments/segment_stream.hpp>
@@ -164,7 +165,7 @@ void BM_LowerLevel(benchmark::State& state, const std::string& program, double p
   state.counters["pieces"] = static_cast<double>(run->stats.pieces);
   state.counters["bytes_per_s"] = static_cast<double>(run->stream.size()) / run->machining_s;
   state.counters["size_ratio"] =
-      (24.0 + 8.0 * (run->layout.size() + 3) * count) / static_cast<double>(run->stream.size());
+      static_cast<double>(binary_setpoint_bytes(run->layout, run->setpoints.size())) / static_cast<double>(run->stream.size());
 }
 
 void BM_DirectPolynomial(benchmark::State& state, const std::string& program, double period_s) {

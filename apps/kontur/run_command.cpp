@@ -184,8 +184,9 @@ bool run_program(const RunOptions& o) {
         {"bytes", stream.bytes},
         {"bytes_per_second", static_cast<double>(stream.bytes) / motion_s},
         {"setpoints_per_piece", stream.pieces > 0 ? static_cast<double>(stream.setpoints) / static_cast<double>(stream.pieces) : 0.0},
-        {"size_ratio_to_binary", static_cast<double>(24 + 8 * (layout.size() + 3) * stream.setpoints) /
-                                     static_cast<double>(std::max<std::uint64_t>(stream.bytes, 1))},
+        {"size_ratio_to_binary",
+         static_cast<double>(binary_setpoint_bytes(layout, static_cast<std::uint64_t>(stream.setpoints))) /
+             static_cast<double>(std::max<std::uint64_t>(stream.bytes, 1))},
         {"tolerance_mm", o.segment_tolerance_mm},
         {"max_error_mm", stream.max_error_mm},
         {"max_speed_error_mm_s", stream.max_speed_error_mm_s}};

@@ -20,6 +20,11 @@ void put(std::ostream& out, T v) {
 
 }  // namespace
 
+std::uint64_t binary_setpoint_bytes(const AxisLayout& layout, std::uint64_t count) noexcept {
+  const std::uint64_t header = layout == AxisLayout::xyz() ? 24 : 40;
+  return header + 8 * static_cast<std::uint64_t>(layout.size() + 3) * count;
+}
+
 SetpointWriter::SetpointWriter(std::ostream& out, SetpointFormat format, double period_s, const AxisLayout& layout)
     : out_(&out), format_(format), axes_(layout.size()) {
   const bool xyz = layout == AxisLayout::xyz();

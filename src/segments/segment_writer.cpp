@@ -64,6 +64,13 @@ struct Encoding {
 }  // namespace
 
 struct SegmentWriter::Impl {
+  // How far replayed channel values are from a sample (deviation()).
+  struct Deviation {
+    double ratio = 0.0;       // the largest, in tolerances (what a piece must keep <= 1)
+    double tool_mm = 0.0;     // the tool point's distance [mm]
+    double extra = 0.0;       // the largest extra axis difference [mm] or [deg]
+    double speed_mm_s = 0.0;  // the path speed's [mm/s]
+  };
   std::ostream* out = nullptr;
   double period_s = 0.0;
   int axes = 3, channels = 4;
@@ -96,6 +103,10 @@ struct SegmentWriter::Impl {
   bool previous_rest = false;
   // The candidate's replayed positions, newest first: [0] the setpoint being checked.
   std::array<std::array<double, kChannels>, 4> replay_window{};
+  // What the last passing check() saw, for the commit: the largest deviations of its setpoints
+  // and its last three replayed setpoints (newest first).
+  Deviation trial_worst;
+  std::array<std::array<double, kChannels>, 3> trial_before{};
 
   void write_header(SegmentStats& stats, const AxisLayout& layout);
   void fit_piece(SegmentStats& stats);
@@ -104,8 +115,7 @@ struct SegmentWriter::Impl {
   void solve(int n);
   void encode(int n, Encoding e);
   [[nodiscard]] double check(int n);
-  // Error of the replayed channel values `r` against sample `s`, in tolerances.
-  [[nodiscard]] double error(const double* r, const Sample& s) const;
+  [[nodiscard]] Deviation deviation(const double* r, const Sample& s) const;
   // Whether the replayed setpoint `r` (the m-th of the candidate, m = 0..n) keeps the limits where
   // the planner's does.
   [[nodiscard]] bool keeps_limits(int m, const double* r);
@@ -352,9 +362,10 @@ void SegmentWriter::Impl::encode(int n, Encoding e) {
   bytes::put_u32(record.data() + at, kll_crc32(record.data(), at));
 }
 
-double SegmentWriter::Impl::error(const double* r, const Sample& s) const {
+SegmentWriter::Impl::Deviation SegmentWriter::Impl::deviation(const double* r, const Sample& s) const {
   // The tool point X Y Z together (the layout starts with them), every other channel alone.
-  double tool = 0.0, worst = 0.0, along = 0.0, speed2 = 0.0;
+  Deviation d;
+  double tool = 0.0, along = 0.0, speed2 = 0.0;
   for (int c = 0; c < 3 && c < axes; ++c) {
     const auto i = static_cast<std::size_t>(c);
     const double e = r[i] - s.x[i];
@@ -362,18 +373,23 @@ double SegmentWriter::Impl::error(const double* r, const Sample& s) const {
     along += e * s.v[i];
     speed2 += s.v[i] * s.v[i];
   }
+  d.tool_mm = std::sqrt(tool);
+  d.ratio = d.tool_mm / tolerance[0];
   // A replayed tool point off along the path by dt cycles is where the planner's was dt cycles
   // later: an extra axis must be off by its own velocity times dt, or a check that places the
   // extra axes from the tool point's distance along the move sees the difference. Both errors
   // count.
   const double dt = speed2 > 0.0 ? along / speed2 : 0.0;
-  for (int c = 3; c < channels; ++c) {
+  for (int c = 3; c < axes; ++c) {
     const auto i = static_cast<std::size_t>(c);
     const double e = r[i] - s.x[i];
-    worst = std::max(worst, std::abs(e) / tolerance[i]);
-    if (c < axes) worst = std::max(worst, std::abs(e - s.v[i] * dt) / tolerance[i]);
+    d.extra = std::max(d.extra, std::abs(e));
+    d.ratio = std::max({d.ratio, std::abs(e) / tolerance[i], std::abs(e - s.v[i] * dt) / tolerance[i]});
   }
-  return std::max(worst, std::sqrt(tool) / tolerance[0]);
+  const auto sp = static_cast<std::size_t>(axes);
+  d.speed_mm_s = std::abs(r[sp] - s.x[sp]);
+  d.ratio = std::max(d.ratio, d.speed_mm_s / tolerance[sp]);
+  return d;
 }
 
 bool SegmentWriter::Impl::keeps_limits(int m, const double* r) {
@@ -406,6 +422,8 @@ double SegmentWriter::Impl::check(int n) {
   kll_setpoint sp;
   std::array<double, kChannels> r{};
   double worst = 0.0;
+  Deviation worst_setpoint;
+  std::array<std::array<double, kChannels>, 3> last3 = replayed_before;
   for (int m = 0; m <= n; ++m) {
     if (m < n) {
       kll_next(&trial, &sp);
@@ -414,14 +432,25 @@ double SegmentWriter::Impl::check(int n) {
     } else {  // the next piece's first setpoint: where this one leaves the state
       for (int c = 0; c < channels; ++c) r[static_cast<std::size_t>(c)] = trial.d[static_cast<std::size_t>(c)][0];
     }
-    const double e = error(r.data(), held[static_cast<std::size_t>(m)]);
+    const Deviation d = deviation(r.data(), held[static_cast<std::size_t>(m)]);
     // The state a piece leaves is where the next one starts: it must be the planner's to a
     // thousandth of the tolerance, or the next piece would have to bend back (a bump in the
     // acceleration and jerk the replayed setpoints show).
-    if (!(e <= (m < n ? 1.0 : tolerances::segment_end_share))) return INFINITY;
-    worst = std::max(worst, e);
+    if (!(d.ratio <= (m < n ? 1.0 : tolerances::segment_end_share))) return INFINITY;
+    worst = std::max(worst, d.ratio);
     if (bounded && enforce_limits && !keeps_limits(m, r.data())) return INFINITY;
+    if (m < n) {
+      worst_setpoint.tool_mm = std::max(worst_setpoint.tool_mm, d.tool_mm);
+      worst_setpoint.extra = std::max(worst_setpoint.extra, d.extra);
+      worst_setpoint.speed_mm_s = std::max(worst_setpoint.speed_mm_s, d.speed_mm_s);
+      // The replayed setpoints the next piece's limit check reaches back to.
+      last3[2] = last3[1];
+      last3[1] = last3[0];
+      last3[0] = r;
+    }
   }
+  trial_worst = worst_setpoint;
+  trial_before = last3;
   // The next piece's first backward differences reach back into this one: they must keep the
   // limits even if it makes the planner's setpoints exactly (as its shortest piece does).
   if (bounded && enforce_limits)
@@ -504,36 +533,27 @@ void SegmentWriter::Impl::fit_piece(SegmentStats& stats) {
   static constexpr std::array<Encoding, 5> continuations = {{{2, false}, {3, true}, {3, false}, {5, true}, {5, false}}};
   static constexpr std::array<Encoding, 5> anchors = {{{0, false}, {1, false}, {2, false}, {3, false}, {5, false}}};
   Encoding chosen{};
+  bool checked = false;
   for (const Encoding& e : anchor ? anchors : continuations) {
     encode(n, e);
     if (check(n) <= 1.0) {
       chosen = e;
+      checked = true;
       break;
     }
   }
-  encode(n, chosen);
-  // Commit: the lower level's state moves on; the errors go to the statistics.
-  if (kll_feed(&state, record.data(), record.size()) != KLL_OK)
-    throw std::logic_error("segment writer: a record it made was refused by the lower level");
-  kll_setpoint sp;
-  for (int m = 0; m < n; ++m) {
-    kll_next(&state, &sp);
-    const Sample& s = held[static_cast<std::size_t>(m)];
-    double tool = 0.0;
-    for (int c = 0; c < axes; ++c) {
-      const double e = std::abs(sp.position[static_cast<std::size_t>(c)] - s.x[static_cast<std::size_t>(c)]);
-      if (c < 3)
-        tool += e * e;
-      else
-        stats.max_error_mm = std::max(stats.max_error_mm, e);
-    }
-    stats.max_error_mm = std::max(stats.max_error_mm, std::sqrt(tool));
-    stats.max_speed_error_mm_s = std::max(stats.max_speed_error_mm_s, std::abs(sp.speed_mm_s - s.x[static_cast<std::size_t>(axes)]));
-    // The history of the limit check, newest first.
-    replayed_before[2] = replayed_before[1];
-    replayed_before[1] = replayed_before[0];
-    for (int c = 0; c < axes; ++c) replayed_before[0][static_cast<std::size_t>(c)] = sp.position[static_cast<std::size_t>(c)];
+  if (!checked) {
+    // The one-cycle piece without the limit check (above): the last encoding tried, degree 5.
+    enforce_limits = false;
+    const bool passes = check(n) <= 1.0;
+    enforce_limits = true;
+    if (!passes) throw std::logic_error("segment writer: the piece it chose no longer fits");
   }
+  // Commit: the lower level's state is the checked trial's, its deviations go to the statistics.
+  state = trial;
+  stats.max_error_mm = std::max({stats.max_error_mm, trial_worst.tool_mm, trial_worst.extra});
+  stats.max_speed_error_mm_s = std::max(stats.max_speed_error_mm_s, trial_worst.speed_mm_s);
+  replayed_before = trial_before;
   out->write(reinterpret_cast<const char*>(record.data()), static_cast<std::streamsize>(record.size()));
   stats.bytes += record.size();
   ++stats.pieces;

@@ -18,6 +18,10 @@ inline constexpr char setpoint_binary_magic[9] = "KONTURSP";
 inline constexpr std::uint32_t setpoint_binary_version = 1;
 inline constexpr std::uint32_t setpoint_binary_version_axes = 2;
 
+/// Bytes of a binary setpoint file of `count` setpoints in `layout`: its header (24 bytes in
+/// version 1, 40 in version 2) and 8 (n + 3) bytes per setpoint.
+[[nodiscard]] std::uint64_t binary_setpoint_bytes(const AxisLayout& layout, std::uint64_t count) noexcept;
+
 /// Output format of setpoints.
 enum class SetpointFormat { csv, binary };
 
