@@ -32,6 +32,9 @@ void register_verify_command(CLI::App& app, int& exit_code);
 /// `kontur replay STREAM`: run the lower level on a segment stream and write its setpoints.
 void register_replay_command(CLI::App& app, int& exit_code);
 
+/// `kontur compress PROGRAM -o OUT`: fit runs of G1 lines by fewer blocks within a tolerance.
+void register_compress_command(CLI::App& app, int& exit_code);
+
 /// `kontur machine [FILE]`: validate a machine file and print the limits in use.
 void register_machine_command(CLI::App& app, int& exit_code);
 

@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
   register_arc_command(app, exit_code);
   register_conic_command(app, exit_code);
   register_check_command(app, exit_code);
+  register_compress_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

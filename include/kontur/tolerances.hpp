@@ -241,6 +241,31 @@ inline constexpr int smooth_fit_iterations = 24;
 /// Factor on the weights of the lines where a fit strays (the smoothing length there shrinks by
 /// its fourth root: 2).
 inline constexpr double smooth_fit_weight_step = 16.0;
+// ---- G01 compression (kontur compress: compress/compressor.hpp; geometry/polyline_fit.hpp with few knots)
+/// A spline with few knots starts with a knot every this many lines.
+inline constexpr std::size_t compress_spline_initial_lines = 8;
+/// Rounds of knot insertion before the spline is given up, and fits per round.
+inline constexpr int compress_spline_knot_rounds = 12;
+inline constexpr int compress_spline_round_iterations = 4;
+/// Smoothing length of the spline with few knots, in tolerances (the dense fit's is
+/// smooth_fit_length_tolerances).
+inline constexpr double compress_spline_length_tolerances = 1.0;
+/// A line piece longer than this many times the run's mean line (and than
+/// smooth_max_line_tolerances) is not put into a spline.
+inline constexpr double compress_spline_long_line_means = 4.0;
+/// Share of the tolerance the lines, arcs and conics are fitted within (the rest: the rounding of
+/// the written coordinates and the sampling of the check).
+inline constexpr double compress_fit_share = 0.9;
+/// Decimals of the written coordinates: mm programs, inch programs.
+inline constexpr int compress_decimals_mm = 4;
+inline constexpr int compress_decimals_inch = 5;
+/// Largest radius of a written arc, in multiples of its chord (a flatter arc is a line).
+inline constexpr double compress_max_radius_chords = 1e4;
+/// Samples per input line of the independent deviation check (at least), and the step of the
+/// samples along a written curve in tolerances (at most).
+inline constexpr int compress_check_samples_per_line = 8;
+inline constexpr double compress_check_step_tolerances = 2.0;
+
 /// The checker searches a setpoint's programmed lines this many lines before and after its own.
 inline constexpr long check_smoothing_lines = 16;
 /// The checker accepts a smoothed setpoint whose distance exceeds the tolerance by at most this, relative.

@@ -207,6 +207,8 @@ private:
     b.type = type;
     b.modal = modal;
     b.location = location(column);
+    b.frame_linear = rotation();
+    b.frame_origin = to_machine(Vec3::Zero());
     return b;
   }
   // Appends a block; its extra axes go from xpos to xto (machine coordinates), and are at xto after it.

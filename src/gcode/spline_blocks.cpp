@@ -106,6 +106,8 @@ void Executor::emit_spline(BlockType type) {
   b.type = type;
   b.modal = spline_modal;
   b.location = spline_loc;
+  b.frame_linear = rotation();
+  b.frame_origin = to_machine(Vec3::Zero());
   b.feed = spline_feed;
   b.start = to_machine(spline_start);
   const Vec3 end_program = nurbs.points.back();

@@ -26,12 +26,12 @@ double derivative(const PolyCoeffs& c, int k, double x) noexcept {
   return r;
 }
 
-// A span of the spline (a line of the polyline, or a part of a long one): its start [mm of arc],
-// length [mm], line, and the four basis functions that are non-zero on it (control points j .. j+3
-// for span j), in x = u - start.
+// A span of the spline (a line of the polyline, a part of a long one, or with few knots several
+// lines): its start [mm of arc], length [mm], the lines it covers (first .. last), and the four
+// basis functions that are non-zero on it (control points j .. j+3 for span j), in x = u - start.
 struct Span {
   double start = 0.0, length = 0.0;
-  std::size_t line = 0;
+  std::size_t line = 0, last_line = 0;
   std::array<PolyCoeffs, degree + 1> basis{};
 };
 
@@ -44,42 +44,68 @@ struct Term {
   double weight = 0.0;
 };
 
-}  // namespace
 
-std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& v, const Vec3& start_tangent, const Vec3& end_tangent,
-                                        double tolerance_mm) {
-  if (v.size() < 5 || !(tolerance_mm > 0.0)) return std::nullopt;
+// One fit with knots at the vertices marked in `knot_at` (knot_at[i]: a knot at vertex i, for
+// 0 < i < n) and inside long lines; what it found: the fit, or the deviation of each span and the
+// lines each covers (for the caller that adds knots).
+struct Attempt {
+  std::optional<PolylineFit> fit;
+  std::vector<double> deviation;
+  std::vector<std::pair<std::size_t, std::size_t>> span_lines;
+};
+
+Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s, const std::vector<char>& knot_at,
+                       bool few_knots, const Vec3& start_tangent, const Vec3& end_tangent, double tolerance_mm,
+                       int iterations) {
+  Attempt result;
   const std::size_t n = v.size() - 1;  // lines
-  std::vector<double> s(n + 1, 0.0);   // arc length at each vertex [mm]
-  for (std::size_t i = 0; i < n; ++i) s[i + 1] = s[i] + (v[i + 1] - v[i]).norm();
   const double total = s[n];
-  if (!std::isfinite(total)) return std::nullopt;
-  for (std::size_t i = 0; i < n; ++i)
-    if (!(s[i + 1] - s[i] > 1e-9 * total)) return std::nullopt;
 
-  // Knots: every vertex, and inside a line that is long against the tolerance a few more (a span
-  // must be able to turn near a vertex and run straight along the rest of its line).
+  // Knots: the marked vertices, and inside a line that is long against the tolerance a few more
+  // (a span must be able to turn near a vertex and run straight along the rest of its line). A
+  // span covering several lines has a piece of each (its start and length), in `pieces`.
   std::vector<double> knots(4, 0.0);
   std::vector<Span> spans;
-  std::vector<std::size_t> first_span(n + 1);  // of each line (first_span[n]: the number of spans)
+  struct Piece {
+    std::size_t span;
+    double start, length;
+  };
+  std::vector<Piece> pieces;
+  std::vector<std::size_t> vertex_span(n + 1);  // the span each vertex starts or lies in
+  std::vector<int> parts(n, 1);  // spans (or pieces of one) of each line; few knots: one
+  if (!few_knots)
+    for (std::size_t i = 0; i < n; ++i)
+      parts[i] = std::clamp(
+        static_cast<int>(std::ceil((s[i + 1] - s[i]) / (tolerances::smooth_fit_span_tolerances * tolerance_mm))), 1,
+        tolerances::smooth_fit_spans_per_line);
+  bool new_span = true;
   for (std::size_t i = 0; i < n; ++i) {
-    first_span[i] = spans.size();
     const double len = s[i + 1] - s[i];
-    const int q = std::clamp(static_cast<int>(std::ceil(len / (tolerances::smooth_fit_span_tolerances * tolerance_mm))),
-                             1, tolerances::smooth_fit_spans_per_line);
+    const int q = parts[i];
     for (int k = 0; k < q; ++k) {
-      Span sp;
-      sp.start = s[i] + len * k / q;
+      const double start = s[i] + len * k / q;
       const double end = k + 1 == q ? s[i + 1] : s[i] + len * (k + 1) / q;
+      if (new_span) {
+        Span sp;
+        sp.start = start;
+        sp.line = i;
+        spans.push_back(sp);
+      }
+      if (k == 0) vertex_span[i] = spans.size() - 1;
+      Span& sp = spans.back();
       sp.length = end - sp.start;
-      sp.line = i;
-      spans.push_back(sp);
-      if (i + 1 < n || k + 1 < q) knots.push_back(end);
+      sp.last_line = i;
+      pieces.push_back(Piece{spans.size() - 1, start, end - start});
+      new_span = k + 1 < q || (i + 1 < n && (knot_at[i + 1] != 0 || q > 1 || parts[i + 1] > 1));
+      if (new_span) knots.push_back(end);
     }
   }
-  first_span[n] = spans.size();
+  vertex_span[n] = spans.size();
   for (int i = 0; i < 4; ++i) knots.push_back(total);
   const std::size_t m = spans.size();
+  result.deviation.assign(m, std::numeric_limits<double>::infinity());
+  for (const Span& sp : spans) result.span_lines.emplace_back(sp.line, sp.last_line);
+  if (m < 4) return result;  // fewer spans than the end conditions fix
   for (std::size_t j = 0; j < m; ++j) {
     const auto b = basis_polynomials(knots, degree, static_cast<int>(j) + degree, spans[j].start);
     for (std::size_t i = 0; i <= degree; ++i) spans[j].basis[i] = b[i];
@@ -100,16 +126,24 @@ std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& v, const Vec3& 
   for (std::size_t i = 0; i < nc; ++i) ctrl[i] = on_polyline((knots[i + 1] + knots[i + 2] + knots[i + 3]) / 3.0);
   ctrl[0] = v[0];
   ctrl[1] = v[0] + start_tangent * knots[4] / 3.0;
-  ctrl[2] = ctrl[1] + start_tangent * knots[5] / 3.0;
   ctrl[nc - 1] = v[n];
   ctrl[nc - 2] = v[n] - end_tangent * (total - knots[nc - 1]) / 3.0;
-  ctrl[nc - 3] = ctrl[nc - 2] - end_tangent * (total - knots[nc - 2]) / 3.0;
-  const std::size_t first_free = 3, free = m - 3;  // control points 3 .. nc - 4
+  // the dense fit also fixes the curvature at the ends (zero: it joins the lines around it); with
+  // few knots a span is long, and a straight first span would leave the lines
+  if (!few_knots) {
+    ctrl[2] = ctrl[1] + start_tangent * knots[5] / 3.0;
+    ctrl[nc - 3] = ctrl[nc - 2] - end_tangent * (total - knots[nc - 2]) / 3.0;
+  }
+  const std::size_t first_free = few_knots ? 2 : 3, free = nc - 2 * first_free;  // control points first_free .. nc - 1 - first_free
 
   // The terms that do not change between fits: the penalties (bending: 2-point Gauss, exact for
   // the linear second derivative; jerk: the third derivative is constant on a span) and the data
-  // points (each span's start and quarters, on the polyline at the same arc length).
-  const double l = tolerances::smooth_fit_length_tolerances * tolerance_mm;  // smoothing length [mm]
+  // points (the start and quarters of each line's piece of each span, on the polyline at the same
+  // arc length).
+  // smoothing length [mm]: with few knots the spans themselves keep the curve smooth, and the
+  // penalties only keep the system well posed
+  const double l = (few_knots ? tolerances::compress_spline_length_tolerances : tolerances::smooth_fit_length_tolerances) *
+                   tolerance_mm;
   std::vector<Term> penalties;
   penalties.reserve(3 * m);
   std::vector<Term> data;
@@ -125,11 +159,15 @@ std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& v, const Vec3& 
     Term t{j, {}, Vec3::Zero(), std::pow(l, 6) * h};
     for (std::size_t i = 0; i <= degree; ++i) t.b[i] = derivative(sp.basis[i], 3, 0.5 * h);
     penalties.push_back(t);
-    const int points = j + 1 == m ? 5 : 4;  // the last span: its end too
+  }
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    const Piece& pc = pieces[k];
+    const Span& sp = spans[pc.span];
+    const int points = k + 1 == pieces.size() ? 5 : 4;  // the last piece: its end too
     for (int q = 0; q < points; ++q) {
       const double f = q / 4.0;
-      Term d{j, {}, on_polyline(sp.start + f * h), h / 4.0};
-      for (std::size_t i = 0; i <= degree; ++i) d.b[i] = derivative(sp.basis[i], 0, f * h);
+      Term d{pc.span, {}, on_polyline(pc.start + f * pc.length), pc.length / 4.0};
+      for (std::size_t i = 0; i <= degree; ++i) d.b[i] = derivative(sp.basis[i], 0, pc.start - sp.start + f * pc.length);
       data.push_back(d);
     }
   }
@@ -150,20 +188,26 @@ std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& v, const Vec3& 
   std::vector<Sample> sample_basis;
   std::vector<std::size_t> sample_start(m + 1);
   std::vector<std::pair<long, long>> window(m);  // lines first .. last around span j
-  for (std::size_t j = 0; j < m; ++j) {
+  for (std::size_t j = 0, k = 0; j < m; ++j) {
     sample_start[j] = sample_basis.size();
     const Span& sp = spans[j];
-    const int k = std::clamp(static_cast<int>(std::ceil(sp.length / (0.25 * tolerance_mm))), 4, 32);
-    for (int q = 0; q <= k; ++q) {
-      Sample smp{j, {}};
-      for (std::size_t i = 0; i <= degree; ++i) smp.b[i] = derivative(sp.basis[i], 0, sp.length * q / k);
-      sample_basis.push_back(smp);
+    for (; k < pieces.size() && pieces[k].span == j; ++k) {
+      const Piece& pc = pieces[k];
+      const int count = std::clamp(static_cast<int>(std::ceil(pc.length / (0.25 * tolerance_mm))), 4, 32);
+      const bool last_piece = k + 1 == pieces.size() || pieces[k + 1].span != j;
+      for (int q = 0; q <= count; ++q) {
+        if (q == count && !last_piece) break;  // the next piece's first sample
+        Sample smp{j, {}};
+        for (std::size_t i = 0; i <= degree; ++i)
+          smp.b[i] = derivative(sp.basis[i], 0, pc.start - sp.start + pc.length * q / count);
+        sample_basis.push_back(smp);
+      }
     }
-    const auto line = static_cast<long>(sp.line);
-    long lo = line, hi = line;
+    const auto line = static_cast<long>(sp.line), last = static_cast<long>(sp.last_line);
+    long lo = line, hi = last;
     while (lo > 0 && s[static_cast<std::size_t>(lo)] > sp.start - reach) --lo;
     while (hi + 1 < static_cast<long>(n) && s[static_cast<std::size_t>(hi) + 1] < sp.start + sp.length + reach) ++hi;
-    window[j] = {std::min(lo, line - 1), std::max(hi, line + 1)};
+    window[j] = {std::min(lo, line - 1), std::max(hi, last + 1)};
   }
   sample_start[m] = sample_basis.size();
 
@@ -211,15 +255,15 @@ std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& v, const Vec3& 
     solver.analyzePattern(a);
   }
 
-  for (int iteration = 1; iteration <= tolerances::smooth_fit_iterations; ++iteration) {
+  for (int iteration = 1; iteration <= iterations; ++iteration) {
     if (free > 0) {
       std::copy(penalty_values.begin(), penalty_values.end(), a.valuePtr());
       rhs = rhs_penalty;
       for (const Term& d : data) add(d, d.weight * factor[d.first], rhs);
       solver.factorize(a);
-      if (solver.info() != Eigen::Success) return std::nullopt;
+      if (solver.info() != Eigen::Success) return result;
       const Eigen::MatrixX3d x = solver.solve(rhs);
-      if (solver.info() != Eigen::Success || !x.allFinite()) return std::nullopt;
+      if (solver.info() != Eigen::Success || !x.allFinite()) return result;
       for (std::size_t i = 0; i < free; ++i)
         points[first_free + i] = ctrl[first_free + i] + x.row(static_cast<Eigen::Index>(i)).transpose();
     }
@@ -239,15 +283,19 @@ std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& v, const Vec3& 
       deviation[j] = d;
     }
     for (std::size_t i = 1; i < n; ++i) {
-      const std::size_t j = first_span[i];  // the span that starts at vertex i
+      const std::size_t j = vertex_span[i];  // the span that starts at vertex i, or has it inside
       double d = std::numeric_limits<double>::infinity();
       const std::size_t q0 = sample_start[j >= 2 ? j - 2 : 0], q1 = sample_start[std::min(m, j + 2)];
       for (std::size_t q = q0; q + 1 < q1; ++q) d = std::min(d, segment_distance(v[i], samples[q], samples[q + 1]));
-      deviation[j - 1] = std::max(deviation[j - 1], d);
+      if (j > 0 && spans[j].start == s[i]) deviation[j - 1] = std::max(deviation[j - 1], d);
       deviation[j] = std::max(deviation[j], d);
     }
     const double worst = *std::max_element(deviation.begin(), deviation.end());
-    if (worst <= target) return PolylineFit{NurbsCurve(NurbsData{degree, knots, points, {}}), s, worst, iteration};
+    result.deviation = deviation;
+    if (worst <= target) {
+      result.fit = PolylineFit{NurbsCurve(NurbsData{degree, knots, points, {}}), s, worst, iteration};
+      return result;
+    }
     // More weight where the curve strays, and on the spans beside it.
     std::fill(raise.begin(), raise.end(), 0);
     for (std::size_t j = 0; j < m; ++j)
@@ -256,7 +304,51 @@ std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& v, const Vec3& 
     for (std::size_t j = 0; j < m; ++j)
       if (raise[j] != 0) factor[j] *= tolerances::smooth_fit_weight_step;
   }
-  return std::nullopt;
+  return result;
+}
+
+}  // namespace
+
+std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& v, const Vec3& start_tangent, const Vec3& end_tangent,
+                                        double tolerance_mm, const PolylineFitOptions& options) {
+  if (v.size() < 5 || !(tolerance_mm > 0.0)) return std::nullopt;
+  const std::size_t n = v.size() - 1;  // lines
+  std::vector<double> s(n + 1, 0.0);   // arc length at each vertex [mm]
+  for (std::size_t i = 0; i < n; ++i) s[i + 1] = s[i] + (v[i + 1] - v[i]).norm();
+  const double total = s[n];
+  if (!std::isfinite(total)) return std::nullopt;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!(s[i + 1] - s[i] > 1e-9 * total)) return std::nullopt;
+  if (!options.few_knots) {
+    const std::vector<char> every(n + 1, 1);
+    return fit_with_knots(v, s, every, false, start_tangent, end_tangent, tolerance_mm, tolerances::smooth_fit_iterations)
+        .fit;
+  }
+
+  // Few knots: one every few lines to begin with (at least four spans), then one more inside every
+  // span that strays, until the fit keeps the tolerance; when no straying span has a vertex left
+  // inside, the fit raises the weights there instead, as the dense fit does.
+  if (std::getenv("KDUMP") && n == 34) for (auto& p : v) fprintf(stderr, "V %.4f %.4f %.4f\n", p.x(), p.y(), p.z());
+  std::vector<char> knot_at(n + 1, 0);
+  const std::size_t step =
+      std::max<std::size_t>(1, std::min<std::size_t>(tolerances::compress_spline_initial_lines, n / 4));
+  for (std::size_t i = step; i + step / 2 < n; i += step) knot_at[i] = 1;
+  for (int round = 0; round < tolerances::compress_spline_knot_rounds; ++round) {
+    Attempt a = fit_with_knots(v, s, knot_at, true, start_tangent, end_tangent, tolerance_mm,
+                               tolerances::compress_spline_round_iterations);
+    if (a.fit) return a.fit;
+    const double target = tolerances::smooth_tolerance_share * tolerance_mm;
+    bool added = false;
+    for (std::size_t j = 0; j < a.deviation.size(); ++j) {
+      if (!(a.deviation[j] <= target) && a.span_lines[j].second > a.span_lines[j].first) {
+        knot_at[(a.span_lines[j].first + a.span_lines[j].second + 1) / 2] = 1;
+        added = true;
+      }
+    }
+    if (!added) break;
+  }
+  return fit_with_knots(v, s, knot_at, true, start_tangent, end_tangent, tolerance_mm, tolerances::smooth_fit_iterations)
+      .fit;
 }
 
 }  // namespace kontur

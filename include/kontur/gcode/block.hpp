@@ -114,6 +114,12 @@ struct Block {
   /// passes through [mm], machine coordinates.
   std::array<Vec3, 3> via{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
   int via_count = 0;                 ///< how many entries of `via` are used
+  /// The program's coordinate frame the block was programmed in: a program point p [mm] (G20's
+  /// inches already times 25.4) is at frame_linear * p + frame_origin in machine coordinates (work
+  /// offset, G92, tool length, the work system's XY rotation and a programmable frame). What
+  /// `kontur compress` writes its new blocks in.
+  Eigen::Matrix3d frame_linear = Eigen::Matrix3d::Identity();
+  Vec3 frame_origin = Vec3::Zero();  ///< machine coordinates of the program's zero [mm]
   /// 73, 81, 82, 83 (the Fanuc family: also 84, 85, 86, 89) if the move was expanded from that cycle, else 0
   int canned_cycle = 0;
 

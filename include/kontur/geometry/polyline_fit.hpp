@@ -13,7 +13,8 @@
 // times the tolerance) and is shortened where the curve strays: every line whose span comes
 // farther than the tolerance from the polyline, or whose vertex is farther from the curve, has the
 // weights of its points and its neighbours' raised (tolerances::smooth_fit_weight_step), and the
-// fit is solved again (a banded system), at most tolerances::smooth_fit_iterations times.
+// fit is solved again (a banded system), at most tolerances::smooth_fit_iterations times. With few
+// knots (PolylineFitOptions) a span covers several lines, and knots are added where it strays.
 #include <kontur/geometry/nurbs.hpp>
 #include <optional>
 #include <vector>
@@ -29,10 +30,22 @@ struct PolylineFit {
   int iterations = 0;  ///< fits solved
 };
 
+/// How the fit places its knots.
+struct PolylineFitOptions {
+  /// false: a knot at every vertex, each line its own span (the planner's smoothing: a move per
+  /// programmed line). true: as few knots as keep the tolerance (`kontur compress`: a control point
+  /// per block written): first a knot every tolerances::compress_spline_initial_lines lines (at
+  /// least four spans), then one more at the middle vertex of every span that strays, fitted again,
+  /// at most tolerances::compress_spline_knot_rounds times; the weights are raised as above where
+  /// a straying span has no vertex left inside.
+  bool few_knots = false;
+};
+
 /// The fit of `vertices` (at least 5: four lines or more, none shorter than 1e-9 of the whole)
 /// within `tolerance_mm` > 0, starting along `start_tangent` and ending along `end_tangent` (unit
 /// vectors). Empty if no fit within the tolerance was found (the caller keeps the lines).
 [[nodiscard]] std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& vertices, const Vec3& start_tangent,
-                                                      const Vec3& end_tangent, double tolerance_mm);
+                                                      const Vec3& end_tangent, double tolerance_mm,
+                                                      const PolylineFitOptions& options = {});
 
 }  // namespace kontur

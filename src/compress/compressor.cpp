@@ -1,0 +1,312 @@
+#include <kontur/compress/compressor.hpp>
+#include <kontur/error.hpp>
+#include <kontur/tolerances.hpp>
+
+#include "nearest_on_polyline.hpp"
+#include "program_text.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace kontur::compress {
+
+CurveKinds default_kinds(gcode::Dialect dialect) noexcept {
+  using gcode::Dialect;
+  CurveKinds k;
+  k.arcs = true;
+  k.arcs_3d = dialect == Dialect::fanuc || dialect == Dialect::mitsubishi || dialect == Dialect::sinumerik;
+  k.splines = dialect == Dialect::linuxcnc || dialect == Dialect::fanuc || dialect == Dialect::mitsubishi;
+  k.conics = false;
+  return k;
+}
+
+namespace {
+
+using gcode::Block;
+using gcode::BlockType;
+
+// What the compressor keeps of a block of the input.
+struct BlockRecord {
+  long line = 0;
+  BlockType type = BlockType::line;
+  Vec3 start = Vec3::Zero(), end = Vec3::Zero();
+  bool main_file = false, extra_axes = false;
+  gcode::Feed feed;
+  gcode::ModalState modal;
+  Eigen::Matrix3d frame_linear = Eigen::Matrix3d::Identity();
+  Vec3 frame_origin = Vec3::Zero();
+  bool in_run = false;
+};
+
+bool is_feed(BlockType t) { return t != BlockType::rapid && t != BlockType::dwell; }
+
+bool same_modal(const gcode::ModalState& a, const gcode::ModalState& b) {
+  return a.units == b.units && a.distance == b.distance && a.arc_distance == b.arc_distance && a.plane == b.plane &&
+         a.feed_mode == b.feed_mode && a.path_control == b.path_control &&
+         a.blend_tolerance_mm == b.blend_tolerance_mm && a.naive_cam_tolerance_mm == b.naive_cam_tolerance_mm &&
+         a.cutter_comp == b.cutter_comp && a.work_offset == b.work_offset && a.tool_length_mm == b.tool_length_mm;
+}
+
+// A rotation (orthonormal, determinant +1): arcs stay arcs with their sense in program coordinates.
+bool rotation_only(const Eigen::Matrix3d& l) {
+  return (l.transpose() * l - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-12 && l.determinant() > 0.0;
+}
+
+// A run: blocks first .. last (indices into the records).
+struct Run {
+  std::size_t first = 0, last = 0;
+};
+
+BlockRecord record_of(const Block& b, const std::string& name) {
+    BlockRecord r;
+    r.line = b.location.line;
+    r.type = b.type;
+    r.start = b.start;
+    r.end = b.end;
+    r.main_file = b.location.file && *b.location.file == name;
+    r.extra_axes = b.moves_extra_axes();
+    r.feed = b.feed;
+    r.modal = b.modal;
+    r.frame_linear = b.frame_linear;
+    r.frame_origin = b.frame_origin;
+    return r;
+}
+
+// The blocks of the program `name`, read through Kontur's reader (the whole program is checked
+// first: an error throws before any block is kept).
+std::vector<BlockRecord> read_blocks(const std::string& name, const gcode::ReaderOptions& options,
+                                     gcode::DialectChoice& dialect) {
+  std::vector<BlockRecord> records;
+  dialect = gcode::for_each_block(name, [&](const Block& b) { records.push_back(record_of(b, name)); }, options);
+  return records;
+}
+
+// The runs of compressible G1 blocks.
+std::vector<Run> find_runs(std::vector<BlockRecord>& blocks, const detail::ProgramText& text) {
+  std::vector<int> executions(text.line_count() + 2, 0);
+  for (const BlockRecord& b : blocks)
+    if (b.main_file && b.line >= 1 && b.line <= static_cast<long>(text.line_count())) ++executions[b.line];
+  auto compressible = [&](const BlockRecord& b) {
+    return b.type == BlockType::line && b.main_file && b.line >= 1 && b.line <= static_cast<long>(text.line_count()) &&
+           executions[b.line] == 1 && !b.extra_axes && b.modal.cutter_comp == gcode::CutterComp::off &&
+           b.feed.mode == gcode::FeedMode::units_per_minute && b.feed.value > 0.0 && b.start.allFinite() &&
+           b.end.allFinite() && rotation_only(b.frame_linear) && text.plain_feed_line(b.line);
+  };
+  auto continues = [&](const BlockRecord& a, const BlockRecord& b) {
+    return b.line == a.line + 1 && b.feed.value == a.feed.value && same_modal(a.modal, b.modal) &&
+           a.frame_linear == b.frame_linear && a.frame_origin == b.frame_origin && b.start == a.end;
+  };
+  std::vector<Run> runs;
+  std::size_t i = 0;
+  while (i < blocks.size()) {
+    if (!compressible(blocks[i])) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    while (j + 1 < blocks.size() && compressible(blocks[j + 1]) && continues(blocks[j], blocks[j + 1])) ++j;
+    if (j > i) runs.push_back(Run{i, j});  // two lines or more
+    i = j + 1;
+  }
+  return runs;
+}
+
+// The run's vertices, without repeated points (a zero-length line adds none).
+std::vector<Vec3> run_vertices(const std::vector<BlockRecord>& blocks, const Run& run) {
+  std::vector<Vec3> v{blocks[run.first].start};
+  for (std::size_t k = run.first; k <= run.last; ++k)
+    if (blocks[k].end != v.back()) v.push_back(blocks[k].end);
+  return v;
+}
+
+// Samples of a curve: at least `min_count` intervals, none longer than `step` of its parameter's
+// share of the length [mm].
+void sample_curve(const Curve& c, double length_mm, double step_mm, std::size_t min_count, std::vector<Vec3>& out) {
+  const auto count = std::max<std::size_t>(
+      min_count, static_cast<std::size_t>(std::ceil(std::min(1e6, length_mm / step_mm))));
+  for (std::size_t k = 1; k <= count; ++k)
+    out.push_back(c.point(c.u_min() + (c.u_max() - c.u_min()) * static_cast<double>(k) / static_cast<double>(count)));
+}
+
+// The independent check: the output read again; for each run the two-way distance between its new
+// blocks (sampled) and its programmed lines; and the blocks outside the runs compared with the
+// input's. Returns the deviation of each run (infinity when its blocks are missing).
+std::vector<double> check_output(const std::string& name, const std::string& output, const gcode::ReaderOptions& options,
+                                 const std::vector<BlockRecord>& input, const std::vector<Run>& runs,
+                                 const std::vector<std::vector<Vec3>>& vertices,
+                                 const std::vector<std::pair<long, long>>& output_lines, double tol) {
+  std::vector<double> deviation(runs.size(), std::numeric_limits<double>::infinity());
+  std::vector<std::vector<Vec3>> samples(runs.size());
+  std::vector<BlockRecord> outside;
+  std::size_t r = 0;
+  // the output's blocks in order; a run's written lines are output_lines[r] (first, last)
+  gcode::Reader reader(name, output, options);
+  Block b;
+  while (reader.next(b)) {
+    const BlockRecord rec = record_of(b, name);
+    while (r < runs.size() && output_lines[r].second < rec.line) ++r;
+    if (r < runs.size() && output_lines[r].first <= rec.line && rec.line <= output_lines[r].second &&
+        rec.main_file && output_lines[r].first > 0) {
+      const Curve* c = b.curve();
+      std::vector<Vec3>& s = samples[r];
+      if (s.empty()) s.push_back(rec.start);
+      if (c != nullptr) {
+        const double len = b.length_mm().value_or((b.end - b.start).norm());
+        const std::size_t min_count = b.type == BlockType::line ? 1 : tolerances::compress_check_samples_per_line;
+        sample_curve(*c, len, tolerances::compress_check_step_tolerances * tol, min_count, s);
+      }
+      continue;
+    }
+    outside.push_back(rec);
+  }
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    if (output_lines[k].first <= 0 || samples[k].size() < 2) continue;
+    const std::vector<Vec3>& v = vertices[k];
+    detail::NearestOnPolyline to_lines(v, tol), to_curve(samples[k], tol);
+    double worst = 0.0;
+    for (const Vec3& q : samples[k]) worst = std::max(worst, to_lines.distance(q));
+    for (const Vec3& p : v) worst = std::max(worst, to_curve.distance(p));
+    deviation[k] = worst;
+  }
+  // outside the runs: the same blocks, ending at the same points
+  std::vector<const BlockRecord*> before;
+  {
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < input.size(); ++i) {
+      while (k < runs.size() && runs[k].last < i) ++k;
+      const bool inside = k < runs.size() && runs[k].first <= i && i <= runs[k].last && output_lines[k].first > 0;
+      if (!inside) before.push_back(&input[i]);
+    }
+  }
+  if (before.size() != outside.size())
+    throw std::logic_error(fmt::format("compress: the output has {} blocks outside the runs, the input {}",
+                                       outside.size(), before.size()));
+  for (std::size_t i = 0; i < before.size(); ++i)
+    if (before[i]->type != outside[i].type || (before[i]->end - outside[i].end).norm() > tol)
+      throw std::logic_error(fmt::format("compress: the block of input line {} comes out as a {} ending {:.6f} mm away",
+                                         before[i]->line, gcode::to_string(outside[i].type),
+                                         (before[i]->end - outside[i].end).norm()));
+  return deviation;
+}
+
+}  // namespace
+
+CompressResult compress_program(const std::string& path, const CompressOptions& options) {
+  const double tol = options.tolerance_mm;
+  if (!(tol > 0.0) || !std::isfinite(tol))
+    throw InputError("tolerance", fmt::format("--tolerance {}: must be a positive number of mm", tol));
+  CompressResult result;
+  std::vector<BlockRecord> blocks = read_blocks(path, options.reader, result.dialect);
+  gcode::ReaderOptions reader = options.reader;
+  reader.dialect = result.dialect.dialect;
+  const detail::ProgramText text(path, result.dialect.dialect);
+
+  result.input_blocks = blocks.size();
+  for (const BlockRecord& b : blocks) result.feed_blocks_in += is_feed(b.type) ? 1 : 0;
+  const std::vector<Run> runs = find_runs(blocks, text);
+
+  // Fit and write every run.
+  std::vector<std::vector<Vec3>> vertices(runs.size());
+  std::vector<std::string> written(runs.size());
+  std::vector<std::size_t> written_lines(runs.size(), 0);
+  result.runs.resize(runs.size());
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const Run& run = runs[k];
+    const BlockRecord& first = blocks[run.first];
+    RunReport& rep = result.runs[k];
+    rep.first_line = first.line;
+    rep.last_line = blocks[run.last].line;
+    rep.lines_in = run.last - run.first + 1;
+    vertices[k] = run_vertices(blocks, run);
+    // fitted and written in the program's frame (machine = L p + o, L a rotation), checked in the machine's
+    std::vector<Vec3> v(vertices[k].size());
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = first.frame_linear.transpose() * (vertices[k][i] - first.frame_origin);
+    if (v.size() < 3) {
+      rep.kept = "fewer than two lines of non-zero length";
+      continue;
+    }
+    // The motion mode after the run: if a later block relies on the modal G1, the run ends with its
+    // last line, as a G1.
+    const bool end_with_line = text.next_lines_need_g1(rep.last_line);
+    std::vector<Piece> pieces;
+    if (end_with_line) {
+      const std::vector<Vec3> head(v.begin(), v.end() - 1);
+      pieces = fit_pieces(head, tol, options.kinds);
+      Piece last;
+      last.first = v.size() - 2;
+      last.last = v.size() - 1;
+      pieces.push_back(last);
+    } else {
+      pieces = fit_pieces(v, tol, options.kinds);
+    }
+    detail::RunWriter w(result.dialect.dialect, text, first.modal, tol);
+    const detail::WrittenRun out = w.write(v, pieces, first.feed.value, rep.first_line);
+    if (out.lines >= rep.lines_in) {
+      rep.kept = "no fewer blocks";
+      continue;
+    }
+    written[k] = out.text;
+    written_lines[k] = out.lines;
+    for (const Piece& p : pieces) ++rep.pieces[static_cast<std::size_t>(p.kind)];
+  }
+
+  // Assemble, check, and write again as programmed every run the check finds out of tolerance.
+  for (;;) {
+    std::vector<std::pair<long, long>> output_lines(runs.size(), {0, -1});
+    std::string out;
+    out.reserve(text.size());
+    long out_line = 1;
+    std::size_t k = 0;
+    for (long line = 1; line <= static_cast<long>(text.line_count()); ++line) {
+      while (k < runs.size() && (written[k].empty() || result.runs[k].last_line < line)) ++k;
+      if (k < runs.size() && !written[k].empty() && result.runs[k].first_line == line) {
+        out += written[k];
+        output_lines[k] = {out_line, out_line + static_cast<long>(written_lines[k]) - 1};
+        result.runs[k].output_line = out_line;
+        out_line += static_cast<long>(written_lines[k]);
+        line = result.runs[k].last_line;
+        continue;
+      }
+      out += text.line(line);
+      ++out_line;
+    }
+    const std::vector<double> deviation =
+        check_output(path, out, reader, blocks, runs, vertices, output_lines, tol);
+    bool again = false;
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+      if (written[r].empty()) continue;
+      result.runs[r].deviation_mm = deviation[r];
+      if (!(deviation[r] <= tol)) {
+        result.runs[r].kept = fmt::format("the written blocks stray {:.6f} mm (> {} mm)", deviation[r], tol);
+        written[r].clear();
+        again = true;
+      }
+    }
+    result.text = std::move(out);
+    if (!again) break;
+  }
+
+  result.feed_blocks_out = result.feed_blocks_in;
+  result.max_deviation_mm = 0.0;
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    RunReport& rep = result.runs[k];
+    if (written[k].empty()) {
+      if (rep.kept.empty()) rep.kept = "the check failed";
+      rep.blocks_out = rep.lines_in;
+      rep.pieces = {};
+      rep.deviation_mm = 0.0;
+      rep.output_line = 0;
+      continue;
+    }
+    rep.blocks_out = written_lines[k];
+    result.feed_blocks_out = result.feed_blocks_out - rep.lines_in + rep.blocks_out;
+    result.max_deviation_mm = std::max(result.max_deviation_mm, rep.deviation_mm);
+  }
+  return result;
+}
+
+}  // namespace kontur::compress
