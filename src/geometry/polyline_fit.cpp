@@ -328,7 +328,6 @@ std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& v, const Vec3& 
   // Few knots: one every few lines to begin with (at least four spans), then one more inside every
   // span that strays, until the fit keeps the tolerance; when no straying span has a vertex left
   // inside, the fit raises the weights there instead, as the dense fit does.
-  if (std::getenv("KDUMP") && n == 34) for (auto& p : v) fprintf(stderr, "V %.4f %.4f %.4f\n", p.x(), p.y(), p.z());
   std::vector<char> knot_at(n + 1, 0);
   const std::size_t step =
       std::max<std::size_t>(1, std::min<std::size_t>(tolerances::compress_spline_initial_lines, n / 4));
