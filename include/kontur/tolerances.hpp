@@ -242,10 +242,10 @@ inline constexpr int smooth_fit_iterations = 24;
 /// its fourth root: 2).
 inline constexpr double smooth_fit_weight_step = 16.0;
 // ---- G01 compression (kontur compress: compress/compressor.hpp; geometry/polyline_fit.hpp with few knots)
-/// A spline with few knots starts with a knot every this many lines.
-inline constexpr std::size_t compress_spline_initial_lines = 8;
+/// A spline with few knots starts with this many spans (knots at vertices evenly spaced).
+inline constexpr std::size_t compress_spline_initial_spans = 4;
 /// Rounds of knot insertion before the spline is given up, and fits per round.
-inline constexpr int compress_spline_knot_rounds = 12;
+inline constexpr int compress_spline_knot_rounds = 16;
 inline constexpr int compress_spline_round_iterations = 4;
 /// Smoothing length of the spline with few knots, in tolerances (the dense fit's is
 /// smooth_fit_length_tolerances).
@@ -255,10 +255,14 @@ inline constexpr double compress_spline_length_tolerances = 1.0;
 inline constexpr double compress_spline_long_line_means = 4.0;
 /// Share of the tolerance the lines, arcs and conics are fitted within (the rest: the rounding of
 /// the written coordinates and the sampling of the check).
-inline constexpr double compress_fit_share = 0.9;
+inline constexpr double compress_fit_share = 0.97;
 /// Decimals of the written coordinates: mm programs, inch programs.
 inline constexpr int compress_decimals_mm = 4;
 inline constexpr int compress_decimals_inch = 5;
+/// An arc through the middle vertex that strays by less than this many tolerances is searched
+/// for a better centre (golden section, at most compress_arc_search_steps evaluations).
+inline constexpr double compress_arc_search_tolerances = 3.0;
+inline constexpr int compress_arc_search_steps = 16;
 /// Largest radius of a written arc, in multiples of its chord (a flatter arc is a line).
 inline constexpr double compress_max_radius_chords = 1e4;
 /// Samples per input line of the independent deviation check (at least), and the step of the

@@ -132,55 +132,105 @@ void sample_curve(const Curve& c, double length_mm, double step_mm, std::size_t 
     out.push_back(c.point(c.u_min() + (c.u_max() - c.u_min()) * static_cast<double>(k) / static_cast<double>(count)));
 }
 
-// The independent check: the output read again; for each run the two-way distance between its new
-// blocks (sampled) and its programmed lines; and the blocks outside the runs compared with the
-// input's. Returns the deviation of each run (infinity when its blocks are missing).
-std::vector<double> check_output(const std::string& name, const std::string& output, const gcode::ReaderOptions& options,
-                                 const std::vector<BlockRecord>& input, const std::vector<Run>& runs,
-                                 const std::vector<std::vector<Vec3>>& vertices,
-                                 const std::vector<std::pair<long, long>>& output_lines, double tol) {
-  std::vector<double> deviation(runs.size(), std::numeric_limits<double>::infinity());
-  std::vector<std::vector<Vec3>> samples(runs.size());
+// A run as it is being written: its vertices in machine coordinates (what is checked) and in the
+// program's frame [mm] (what is fitted and written), its pieces and their text.
+struct RunState {
+  std::vector<Vec3> machine, program;
+  std::vector<Piece> pieces;
+  detail::WrittenRun out;
+  bool active = false;
+  long output_line = 0;                  // its first line in the output (0: not written)
+  std::vector<double> piece_deviation;  // the check's, per piece [mm]
+};
+
+// What the check found wrong in the written program.
+struct CheckFailure {
+  std::size_t run = 0, piece = 0;
+};
+
+// The output line `line` belongs to which run and piece (false: none).
+bool locate(const std::vector<RunState>& runs, long line, CheckFailure& where) {
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    const RunState& st = runs[r];
+    if (!st.active || line < st.output_line || line >= st.output_line + static_cast<long>(st.out.lines)) continue;
+    for (std::size_t p = 0; p < st.out.piece_lines.size(); ++p) {
+      const long first = st.output_line + static_cast<long>(st.out.piece_lines[p].first);
+      const long last = st.output_line + static_cast<long>(st.out.piece_lines[p].second);
+      if (line >= first && line <= last) {
+        where = {r, p};
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+// The independent check: the output read again by Kontur's reader; for each written piece the
+// two-way distance between its blocks (sampled) and its programmed lines (every sample from the
+// lines, every programmed vertex from the samples' polyline); and the blocks outside the runs
+// compared with the input's (same type, same end point). Sets piece_deviation of every active run;
+// a block the reader refuses marks its piece as straying (infinity).
+void check_output(const std::string& name, const std::string& output, const gcode::ReaderOptions& options,
+                  const std::vector<BlockRecord>& input, const std::vector<Run>& runs, std::vector<RunState>& states,
+                  double tol) {
+  std::vector<std::vector<std::vector<Vec3>>> samples(runs.size());
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    states[r].piece_deviation.assign(states[r].pieces.size(), 0.0);
+    samples[r].assign(states[r].pieces.size(), {});
+  }
   std::vector<BlockRecord> outside;
-  std::size_t r = 0;
-  // the output's blocks in order; a run's written lines are output_lines[r] (first, last)
-  gcode::Reader reader(name, output, options);
-  Block b;
-  while (reader.next(b)) {
-    const BlockRecord rec = record_of(b, name);
-    while (r < runs.size() && output_lines[r].second < rec.line) ++r;
-    if (r < runs.size() && output_lines[r].first <= rec.line && rec.line <= output_lines[r].second &&
-        rec.main_file && output_lines[r].first > 0) {
-      const Curve* c = b.curve();
-      std::vector<Vec3>& s = samples[r];
+  try {
+    gcode::Reader reader(name, output, options);
+    Block b;
+    while (reader.next(b)) {
+      const BlockRecord rec = record_of(b, name);
+      CheckFailure at;
+      if (!rec.main_file || !locate(states, rec.line, at)) {
+        outside.push_back(rec);
+        continue;
+      }
+      std::vector<Vec3>& s = samples[at.run][at.piece];
       if (s.empty()) s.push_back(rec.start);
-      if (c != nullptr) {
+      if (const Curve* c = b.curve()) {
         const double len = b.length_mm().value_or((b.end - b.start).norm());
         const std::size_t min_count = b.type == BlockType::line ? 1 : tolerances::compress_check_samples_per_line;
         sample_curve(*c, len, tolerances::compress_check_step_tolerances * tol, min_count, s);
       }
-      continue;
     }
-    outside.push_back(rec);
+  } catch (const InputError& e) {
+    // the reader refused a written block: "NAME:LINE:COLUMN: ..." names its line
+    const std::string what = e.what();
+    long line = 0;
+    if (what.rfind(name + ":", 0) == 0) line = std::atol(what.c_str() + name.size() + 1);
+    CheckFailure at;
+    if (!locate(states, line, at)) throw;
+    states[at.run].piece_deviation[at.piece] = std::numeric_limits<double>::infinity();
+    return;
   }
-  for (std::size_t k = 0; k < runs.size(); ++k) {
-    if (output_lines[k].first <= 0 || samples[k].size() < 2) continue;
-    const std::vector<Vec3>& v = vertices[k];
-    detail::NearestOnPolyline to_lines(v, tol), to_curve(samples[k], tol);
-    double worst = 0.0;
-    for (const Vec3& q : samples[k]) worst = std::max(worst, to_lines.distance(q));
-    for (const Vec3& p : v) worst = std::max(worst, to_curve.distance(p));
-    deviation[k] = worst;
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    RunState& st = states[r];
+    if (!st.active) continue;
+    for (std::size_t p = 0; p < st.pieces.size(); ++p) {
+      const std::vector<Vec3>& s = samples[r][p];
+      if (s.size() < 2) {
+        st.piece_deviation[p] = std::numeric_limits<double>::infinity();  // its blocks went missing
+        continue;
+      }
+      const std::vector<Vec3> lines(st.machine.begin() + static_cast<long>(st.pieces[p].first),
+                                    st.machine.begin() + static_cast<long>(st.pieces[p].last) + 1);
+      detail::NearestOnPolyline to_lines(lines, tol), to_curve(s, tol);
+      double worst = 0.0;
+      for (const Vec3& q : s) worst = std::max(worst, to_lines.distance(q));
+      for (const Vec3& v : lines) worst = std::max(worst, to_curve.distance(v));
+      st.piece_deviation[p] = worst;
+    }
   }
   // outside the runs: the same blocks, ending at the same points
   std::vector<const BlockRecord*> before;
-  {
-    std::size_t k = 0;
-    for (std::size_t i = 0; i < input.size(); ++i) {
-      while (k < runs.size() && runs[k].last < i) ++k;
-      const bool inside = k < runs.size() && runs[k].first <= i && i <= runs[k].last && output_lines[k].first > 0;
-      if (!inside) before.push_back(&input[i]);
-    }
+  for (std::size_t i = 0, k = 0; i < input.size(); ++i) {
+    while (k < runs.size() && runs[k].last < i) ++k;
+    const bool inside = k < runs.size() && runs[k].first <= i && i <= runs[k].last && states[k].active;
+    if (!inside) before.push_back(&input[i]);
   }
   if (before.size() != outside.size())
     throw std::logic_error(fmt::format("compress: the output has {} blocks outside the runs, the input {}",
@@ -190,7 +240,6 @@ std::vector<double> check_output(const std::string& name, const std::string& out
       throw std::logic_error(fmt::format("compress: the block of input line {} comes out as a {} ending {:.6f} mm away",
                                          before[i]->line, gcode::to_string(outside[i].type),
                                          (before[i]->end - outside[i].end).norm()));
-  return deviation;
 }
 
 }  // namespace
@@ -210,81 +259,94 @@ CompressResult compress_program(const std::string& path, const CompressOptions& 
   const std::vector<Run> runs = find_runs(blocks, text);
 
   // Fit and write every run.
-  std::vector<std::vector<Vec3>> vertices(runs.size());
-  std::vector<std::string> written(runs.size());
-  std::vector<std::size_t> written_lines(runs.size(), 0);
+  std::vector<RunState> states(runs.size());
   result.runs.resize(runs.size());
+  auto write = [&](std::size_t k) {
+    RunState& st = states[k];
+    RunReport& rep = result.runs[k];
+    const BlockRecord& first = blocks[runs[k].first];
+    detail::RunWriter w(result.dialect.dialect, text, first.modal, tol);
+    st.out = w.write(st.program, st.pieces, first.feed.value, rep.first_line);
+    st.active = st.out.lines < rep.lines_in;
+    if (!st.active) rep.kept = "no fewer blocks";
+  };
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const Run& run = runs[k];
     const BlockRecord& first = blocks[run.first];
+    RunState& st = states[k];
     RunReport& rep = result.runs[k];
     rep.first_line = first.line;
     rep.last_line = blocks[run.last].line;
     rep.lines_in = run.last - run.first + 1;
-    vertices[k] = run_vertices(blocks, run);
+    st.machine = run_vertices(blocks, run);
     // fitted and written in the program's frame (machine = L p + o, L a rotation), checked in the machine's
-    std::vector<Vec3> v(vertices[k].size());
-    for (std::size_t i = 0; i < v.size(); ++i) v[i] = first.frame_linear.transpose() * (vertices[k][i] - first.frame_origin);
+    st.program.resize(st.machine.size());
+    for (std::size_t i = 0; i < st.machine.size(); ++i)
+      st.program[i] = first.frame_linear.transpose() * (st.machine[i] - first.frame_origin);
+    const std::vector<Vec3>& v = st.program;
     if (v.size() < 3) {
       rep.kept = "fewer than two lines of non-zero length";
       continue;
     }
     // The motion mode after the run: if a later block relies on the modal G1, the run ends with its
     // last line, as a G1.
-    const bool end_with_line = text.next_lines_need_g1(rep.last_line);
-    std::vector<Piece> pieces;
-    if (end_with_line) {
+    if (text.next_lines_need_g1(rep.last_line)) {
       const std::vector<Vec3> head(v.begin(), v.end() - 1);
-      pieces = fit_pieces(head, tol, options.kinds);
+      st.pieces = fit_pieces(head, tol, options.kinds);
       Piece last;
       last.first = v.size() - 2;
       last.last = v.size() - 1;
-      pieces.push_back(last);
+      st.pieces.push_back(last);
     } else {
-      pieces = fit_pieces(v, tol, options.kinds);
+      st.pieces = fit_pieces(v, tol, options.kinds);
     }
-    detail::RunWriter w(result.dialect.dialect, text, first.modal, tol);
-    const detail::WrittenRun out = w.write(v, pieces, first.feed.value, rep.first_line);
-    if (out.lines >= rep.lines_in) {
-      rep.kept = "no fewer blocks";
-      continue;
-    }
-    written[k] = out.text;
-    written_lines[k] = out.lines;
-    for (const Piece& p : pieces) ++rep.pieces[static_cast<std::size_t>(p.kind)];
+    write(k);
   }
 
-  // Assemble, check, and write again as programmed every run the check finds out of tolerance.
+  // Assemble and check; a piece the check finds out of tolerance is written as its lines, and the
+  // whole is checked again.
   for (;;) {
-    std::vector<std::pair<long, long>> output_lines(runs.size(), {0, -1});
     std::string out;
     out.reserve(text.size());
     long out_line = 1;
     std::size_t k = 0;
     for (long line = 1; line <= static_cast<long>(text.line_count()); ++line) {
-      while (k < runs.size() && (written[k].empty() || result.runs[k].last_line < line)) ++k;
-      if (k < runs.size() && !written[k].empty() && result.runs[k].first_line == line) {
-        out += written[k];
-        output_lines[k] = {out_line, out_line + static_cast<long>(written_lines[k]) - 1};
-        result.runs[k].output_line = out_line;
-        out_line += static_cast<long>(written_lines[k]);
+      while (k < runs.size() && (!states[k].active || result.runs[k].last_line < line)) ++k;
+      if (k < runs.size() && states[k].active && result.runs[k].first_line == line) {
+        out += states[k].out.text;
+        states[k].output_line = out_line;
+        out_line += static_cast<long>(states[k].out.lines);
         line = result.runs[k].last_line;
         continue;
       }
       out += text.line(line);
       ++out_line;
     }
-    const std::vector<double> deviation =
-        check_output(path, out, reader, blocks, runs, vertices, output_lines, tol);
+    check_output(path, out, reader, blocks, runs, states, tol);
     bool again = false;
     for (std::size_t r = 0; r < runs.size(); ++r) {
-      if (written[r].empty()) continue;
-      result.runs[r].deviation_mm = deviation[r];
-      if (!(deviation[r] <= tol)) {
-        result.runs[r].kept = fmt::format("the written blocks stray {:.6f} mm (> {} mm)", deviation[r], tol);
-        written[r].clear();
-        again = true;
+      RunState& st = states[r];
+      if (!st.active) continue;
+      std::vector<Piece> kept;
+      bool changed = false;
+      for (std::size_t p = 0; p < st.pieces.size(); ++p) {
+        if (st.piece_deviation[p] <= tol || st.pieces[p].kind == PieceKind::line) {
+          kept.push_back(st.pieces[p]);
+          continue;
+        }
+        changed = true;
+        ++result.pieces_rewritten;
+        for (std::size_t i = st.pieces[p].first; i < st.pieces[p].last; ++i) {
+          Piece line;
+          line.first = i;
+          line.last = i + 1;
+          kept.push_back(line);
+        }
       }
+      if (!changed) continue;
+      st.pieces = std::move(kept);
+      write(r);
+      again = true;
     }
     result.text = std::move(out);
     if (!again) break;
@@ -294,15 +356,16 @@ CompressResult compress_program(const std::string& path, const CompressOptions& 
   result.max_deviation_mm = 0.0;
   for (std::size_t k = 0; k < runs.size(); ++k) {
     RunReport& rep = result.runs[k];
-    if (written[k].empty()) {
-      if (rep.kept.empty()) rep.kept = "the check failed";
+    const RunState& st = states[k];
+    if (!st.active) {
+      if (rep.kept.empty()) rep.kept = "no fewer blocks";
       rep.blocks_out = rep.lines_in;
-      rep.pieces = {};
-      rep.deviation_mm = 0.0;
-      rep.output_line = 0;
       continue;
     }
-    rep.blocks_out = written_lines[k];
+    rep.output_line = st.output_line;
+    rep.blocks_out = st.out.lines;
+    for (const Piece& p : st.pieces) ++rep.pieces[static_cast<std::size_t>(p.kind)];
+    for (const double d : st.piece_deviation) rep.deviation_mm = std::max(rep.deviation_mm, d);
     result.feed_blocks_out = result.feed_blocks_out - rep.lines_in + rep.blocks_out;
     result.max_deviation_mm = std::max(result.max_deviation_mm, rep.deviation_mm);
   }

@@ -42,61 +42,124 @@ struct Frame {
   Vec3 origin = Vec3::Zero(), e1 = Vec3::UnitX(), e2 = Vec3::UnitY(), n = Vec3::UnitZ();
 };
 
-// Does the arc (or helix along frame.n) from v[a] through v[(a+b)/2] to v[b] keep every vertex and
-// every line a..b within `tol`? The circle is the one through the three points' projections.
+// Does an arc (or a helix along frame.n) from v[a] to v[b] keep every vertex and every line a..b
+// within `tol`? The arcs through the two ends form a family with their centres on the chord's
+// bisector; the one through v[(a+b)/2] is tried first, and if it strays, the one whose largest
+// deviation is least (golden-section search between the circles through the ends and each vertex).
 bool arc_fits(const std::vector<Vec3>& v, std::size_t a, std::size_t b, const Frame& f, double tol, Piece* out) {
-  const std::size_t mid = (a + b) / 2;
-  auto uv = [&](const Vec3& p) { return Eigen::Vector2d((p - f.origin).dot(f.e1), (p - f.origin).dot(f.e2)); };
-  auto h = [&](const Vec3& p) { return (p - f.origin).dot(f.n); };
-  const Eigen::Vector2d pa = uv(v[a]), pm = uv(v[mid]), pb = uv(v[b]);
-  const Eigen::Vector2d d1 = pm - pa, d2 = pb - pa;
+  const std::size_t mid = (a + b) / 2, count = b - a + 1;
+  std::vector<Eigen::Vector2d> q(count);
+  std::vector<double> h(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const Vec3 d = v[a + k] - f.origin;
+    q[k] = Eigen::Vector2d(d.dot(f.e1), d.dot(f.e2));
+    h[k] = d.dot(f.n);
+  }
+  const Eigen::Vector2d& pa = q.front();
+  const Eigen::Vector2d& pb = q.back();
+  const Eigen::Vector2d d1 = q[mid - a] - pa, d2 = pb - pa;
   const double cross = d1.x() * d2.y() - d1.y() * d2.x();
   const double chord = d2.norm();
   if (!(chord > 0.0) || std::abs(cross) <= 1e-12 * d1.squaredNorm() * chord) return false;
-  // centre = pa + c, |c| = |c - d1| = |c - d2|
-  const double s1 = d1.squaredNorm(), s2 = d2.squaredNorm();
-  const Eigen::Vector2d c(pa.x() + (d2.y() * s1 - d1.y() * s2) / (2.0 * cross),
-                          pa.y() + (d1.x() * s2 - d2.x() * s1) / (2.0 * cross));
-  const double r = (pa - c).norm();
-  if (!std::isfinite(r) || r > tolerances::compress_max_radius_chords * std::max(chord, d1.norm())) return false;
   const double dir = cross > 0.0 ? 1.0 : -1.0;  // counter-clockwise about n: +1
-  // Angles swept from v[a], in the direction of motion: strictly increasing, below a full turn.
-  const std::size_t count = b - a + 1;
-  std::vector<double> swept(count, 0.0), radial(count, 0.0);
-  double prev = std::atan2(pa.y() - c.y(), pa.x() - c.x());
-  for (std::size_t k = 1; k < count; ++k) {
-    const Eigen::Vector2d p = uv(v[a + k]);
-    const double ang = std::atan2(p.y() - c.y(), p.x() - c.x());
-    double step = dir * (ang - prev);
-    while (step <= -std::numbers::pi) step += two_pi;
-    while (step > std::numbers::pi) step -= two_pi;
-    if (!(step > 0.0)) return false;
-    swept[k] = swept[k - 1] + step;
-    radial[k] = std::abs((p - c).norm() - r);
-    prev = ang;
+  // centres c(t) = m + t n on the bisector; n points to the left of the chord
+  const Eigen::Vector2d m = 0.5 * (pa + pb), nrm = Eigen::Vector2d(-d2.y(), d2.x()) / chord;
+  const double half2 = 0.25 * chord * chord;
+  std::vector<double> swept(count), radial(count);
+  // The largest deviation of the arc with centre parameter t (infinity if the vertices do not go
+  // round it in order within a turn): at each vertex its distance from the helix; along each line
+  // the arc's distance from the chord at its middle (the sagitta against the vertices' offsets).
+  auto error = [&](double t) {
+    const Eigen::Vector2d c = m + t * nrm;
+    const double r = std::sqrt(half2 + t * t);
+    if (!std::isfinite(r) || r > tolerances::compress_max_radius_chords * chord) return HUGE_VAL;
+    double prev = std::atan2(pa.y() - c.y(), pa.x() - c.x());
+    swept[0] = 0.0;
+    radial[0] = 0.0;
+    for (std::size_t k = 1; k < count; ++k) {
+      const double ang = std::atan2(q[k].y() - c.y(), q[k].x() - c.x());
+      double step = dir * (ang - prev);
+      while (step <= -std::numbers::pi) step += two_pi;
+      while (step > std::numbers::pi) step -= two_pi;
+      if (!(step > 0.0)) return HUGE_VAL;
+      swept[k] = swept[k - 1] + step;
+      radial[k] = (q[k] - c).norm() - r;  // > 0: outside the arc
+      prev = ang;
+    }
+    radial[count - 1] = 0.0;
+    const double total = swept[count - 1];
+    if (!(total < two_pi - 1e-6)) return HUGE_VAL;
+    double worst = 0.0, rise = 0.0;
+    for (std::size_t k = 1; k + 1 < count; ++k) {
+      const double dh = h[k] - (h[0] + (h[count - 1] - h[0]) * swept[k] / total);
+      worst = std::max(worst, std::hypot(radial[k], dh));
+      rise = std::max(rise, std::abs(dh));
+    }
+    for (std::size_t k = 0; k + 1 < count; ++k) {
+      const double half = 0.5 * (q[k + 1] - q[k]).norm();
+      const double sag = r - std::sqrt(std::max(0.0, r * r - half * half));
+      // the chord's offset from the arc along it, x in [0, 1]: d_k + (d_k+1 - d_k) x - 4 sag x (1 - x)
+      const double d0 = radial[k], delta = radial[k + 1] - radial[k];
+      double off = std::max(std::abs(d0), std::abs(radial[k + 1]));
+      if (sag > 0.0) {
+        const double x = (4.0 * sag - delta) / (8.0 * sag);
+        if (x > 0.0 && x < 1.0) off = std::max(off, std::abs(d0 + delta * x - 4.0 * sag * x * (1.0 - x)));
+      }
+      worst = std::max(worst, off + rise);
+    }
+    return worst;
+  };
+  // the circle through the middle vertex
+  const double tm = [&] {
+    const Eigen::Vector2d w = m - q[mid - a];
+    return (half2 - w.squaredNorm()) / (2.0 * nrm.dot(w));
+  }();
+  double t = tm, e = error(tm);
+  if (e > tol && e < tolerances::compress_arc_search_tolerances * tol && count > 3) {
+    double lo = tm, hi = tm;
+    for (std::size_t k = 1; k + 1 < count; ++k) {
+      const Eigen::Vector2d w = m - q[k];
+      const double den = 2.0 * nrm.dot(w);
+      if (std::abs(den) < 1e-300) continue;
+      const double tk = (half2 - w.squaredNorm()) / den;
+      if (std::isfinite(tk)) {
+        lo = std::min(lo, tk);
+        hi = std::max(hi, tk);
+      }
+    }
+    constexpr double g = 0.6180339887498949;
+    double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+    double e1 = error(x1), e2 = error(x2);
+    for (int it = 0; it < tolerances::compress_arc_search_steps && e > tol; ++it) {
+      if (e1 <= e2) {
+        hi = x2;
+        x2 = x1;
+        e2 = e1;
+        x1 = hi - g * (hi - lo);
+        e1 = error(x1);
+      } else {
+        lo = x1;
+        x1 = x2;
+        e1 = e2;
+        x2 = lo + g * (hi - lo);
+        e2 = error(x2);
+      }
+      if (e1 < e) { e = e1; t = x1; }
+      if (e2 < e) { e = e2; t = x2; }
+    }
   }
-  const double total = swept[count - 1];
-  if (!(total < two_pi - 1e-6)) return false;
-  // Each vertex: off the circle, and off the helix's linear rise; each line: its chord's sagitta.
-  const double ha = h(v[a]), hb = h(v[b]);
-  std::vector<double> err(count, 0.0);
-  double worst = 0.0;
-  for (std::size_t k = 1; k + 1 < count; ++k) {
-    const double dh = h(v[a + k]) - (ha + (hb - ha) * swept[k] / total);
-    err[k] = std::hypot(radial[k], dh);
-    if (err[k] > tol) return false;
-  }
-  for (std::size_t k = 0; k + 1 < count; ++k) {
-    const double half = 0.5 * (uv(v[a + k + 1]) - uv(v[a + k])).norm();
-    const double sag = r - std::sqrt(std::max(0.0, r * r - half * half));
-    const double e = sag + std::max(err[k], err[k + 1]);
-    if (e > tol) return false;
-    worst = std::max(worst, e);
-  }
+  if (!(e <= tol)) return false;
   if (out != nullptr) {
+    error(t);
+    const Eigen::Vector2d c = m + t * nrm;
+    const double r = std::sqrt(half2 + t * t);
     out->counter_clockwise = dir > 0.0;
-    out->centre = f.origin + c.x() * f.e1 + c.y() * f.e2 + ha * f.n;
-    out->deviation_mm = worst;
+    out->centre = f.origin + c.x() * f.e1 + c.y() * f.e2 + h[0] * f.n;
+    out->deviation_mm = e;
+    // the point halfway round (what a three-point arc is written through)
+    const double half_way = std::atan2(pa.y() - c.y(), pa.x() - c.x()) + dir * 0.5 * swept[count - 1];
+    out->via[0] = f.origin + (c.x() + r * std::cos(half_way)) * f.e1 + (c.y() + r * std::sin(half_way)) * f.e2 +
+                  0.5 * (h[0] + h[count - 1]) * f.n;
   }
   return true;
 }
@@ -129,7 +192,6 @@ bool arc_3d_fits(const std::vector<Vec3>& v, std::size_t a, std::size_t b, doubl
   if (!arc_fits(v, a, b, f, tol, out)) return false;
   if (out != nullptr) {
     out->kind = PieceKind::arc_3d;
-    out->via[0] = v[mid];
   }
   return true;
 }
@@ -175,7 +237,8 @@ bool conic_fits(const std::vector<Vec3>& v, std::size_t a, std::size_t b, double
   for (std::size_t k = 0; k < 5; ++k) pts[k] = v[at[k]];
   try {
     ConicOptions options;
-    options.plane_tolerance_mm = 0.5 * tol;
+    // the reader's limit (tolerances::gcode_conic_plane_mm), with room for the written rounding
+    options.plane_tolerance_mm = std::min(0.5 * tol, 0.5 * tolerances::gcode_conic_plane_mm);
     const ConicThroughPoints fit = conic_through_points(pts, options);
     const ConicArc arc = fit.curve();
     const std::size_t count = std::max<std::size_t>(32, 8 * span);
@@ -195,22 +258,25 @@ bool conic_fits(const std::vector<Vec3>& v, std::size_t a, std::size_t b, double
   }
 }
 
-// The last vertex (> a) up to which `fits` holds, searching by doubling the reach from `first`
-// and bisecting; a if it does not hold at `first`.
+// The last vertex (> a) up to which `fits` holds: the reach doubles from `first` while it holds
+// (and, before it first holds, up to three times more: rounded coordinates can make the first few
+// vertices of an arc collinear), then bisects; a if it never holds.
 std::size_t farthest(std::size_t a, std::size_t first, std::size_t end, const std::function<bool(std::size_t)>& fits) {
-  if (first > end || !fits(first)) return a;
-  std::size_t good = first, step = first - a;
-  std::size_t bad = end + 1;
-  while (good < end) {
-    step *= 2;
-    const std::size_t next = std::min(end, a + step);
-    if (fits(next)) {
-      good = next;
+  if (first > end) return a;
+  std::size_t good = a, bad = end + 1, step = first - a;
+  int misses = 0;
+  for (std::size_t b = first;; b = std::min(end, a + step)) {
+    if (fits(b)) {
+      good = b;
+      bad = end + 1;
     } else {
-      bad = next;
-      break;
+      bad = b;
+      if (good > a || ++misses > 3) break;
     }
+    if (b == end) break;
+    step *= 2;
   }
+  if (good == a) return a;
   while (bad - good > 1) {
     const std::size_t mid = good + (bad - good) / 2;
     if (fits(mid))
@@ -269,12 +335,13 @@ std::vector<Piece> fit_pieces(const std::vector<Vec3>& v, double tolerance_mm, c
   std::function<void(std::size_t, std::size_t)> over = [&](std::size_t i, std::size_t j) {
     const std::size_t a = pieces[i].first, b = pieces[j - 1].last;
     // the fewest blocks a spline could take: a control point per initial span, three more, the knots
-    const std::size_t least = (b - a) / tolerances::compress_spline_initial_lines + 3 + 4;
+    const std::size_t least = tolerances::compress_spline_initial_spans + 3 + 4;
     if (j - i >= 2 && least < j - i && b - a >= 4) {
       const std::vector<Vec3> sub(v.begin() + static_cast<long>(a), v.begin() + static_cast<long>(b) + 1);
       const Vec3 t0 = (v[a + 1] - v[a]).normalized(), t1 = (v[b] - v[b - 1]).normalized();
       PolylineFitOptions options;
       options.few_knots = true;
+      options.max_control_points = j - i - 1 - (static_cast<std::size_t>(3) + 1);  // fewer lines than the pieces
       std::optional<PolylineFit> fit = fit_polyline(sub, t0, t1, tolerance_mm, options);
       if (fit && spline_block_lines(fit->curve) < j - i) {
         Piece p;

@@ -267,6 +267,7 @@ WrittenRun RunWriter::write(const std::vector<Vec3>& v, const std::vector<Piece>
     const Piece& p = pieces[k];
     const bool last = k + 1 == pieces.size();
     const Vec3& end = v[p.last];
+    const std::size_t before = out_.lines;
     switch (p.kind) {
       case PieceKind::line: {
         block("G1" + axes(end, false, last) + f());
@@ -341,6 +342,7 @@ WrittenRun RunWriter::write(const std::vector<Vec3>& v, const std::vector<Piece>
         break;
       }
     }
+    out_.piece_lines.emplace_back(before, out_.lines - 1);
   }
   if (plane != modal_plane) block(plane_codes[static_cast<std::size_t>(modal_plane)]);
   if (incremental) block("G91");

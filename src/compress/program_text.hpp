@@ -44,6 +44,9 @@ class ProgramText {
 struct WrittenRun {
   std::string text;       ///< the lines, each with the program's line end
   std::size_t lines = 0;  ///< how many
+  /// For each piece its lines in `text` (0-based first and last; the plane or G91 restored after
+  /// the last piece belongs to none).
+  std::vector<std::pair<std::size_t, std::size_t>> piece_lines;
 };
 
 /// Writes a run's pieces as blocks of `dialect`, in the program's units and coordinates.

@@ -67,7 +67,7 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
   std::vector<double> knots(4, 0.0);
   std::vector<Span> spans;
   struct Piece {
-    std::size_t span;
+    std::size_t span, line;
     double start, length;
   };
   std::vector<Piece> pieces;
@@ -95,7 +95,7 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
       Span& sp = spans.back();
       sp.length = end - sp.start;
       sp.last_line = i;
-      pieces.push_back(Piece{spans.size() - 1, start, end - start});
+      pieces.push_back(Piece{spans.size() - 1, i, start, end - start});
       new_span = k + 1 < q || (i + 1 < n && (knot_at[i + 1] != 0 || q > 1 || parts[i + 1] > 1));
       if (new_span) knots.push_back(end);
     }
@@ -178,38 +178,46 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
 
   // What the check of a fit needs and no fit changes: the basis values at each span's samples
   // (close enough that the curve between them stays near their chords), and the lines around
-  // each span the samples are measured against (those within `reach` of arc, at least one more
-  // on each side: a subset of the lines, so the true distance is no larger).
+  // each piece of a line the samples are measured against (those within `reach` of arc, at least
+  // one more on each side: a subset of the lines, so the true distance is no larger).
   const double reach = 4.0 * tolerance_mm;  // [mm of arc]
   struct Sample {
-    std::size_t span;
+    std::size_t span, piece;
     std::array<double, degree + 1> b;
   };
   std::vector<Sample> sample_basis;
   std::vector<std::size_t> sample_start(m + 1);
-  std::vector<std::pair<long, long>> window(m);  // lines first .. last around span j
+  std::vector<std::pair<long, long>> window(pieces.size());  // lines first .. last around piece k
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    const Piece& pc = pieces[k];
+    const auto line = static_cast<long>(pc.line);
+    long lo = line, hi = line;
+    while (lo > 0 && s[static_cast<std::size_t>(lo)] > pc.start - reach) --lo;
+    while (hi + 1 < static_cast<long>(n) && s[static_cast<std::size_t>(hi) + 1] < pc.start + pc.length + reach) ++hi;
+    window[k] = {std::min(lo, line - 1), std::max(hi, line + 1)};
+  }
+  std::vector<std::size_t> piece_sample(pieces.size() + 1), line_piece(n + 1, 0);
+  for (std::size_t k = pieces.size(); k-- > 0;) line_piece[pieces[k].line] = k;
   for (std::size_t j = 0, k = 0; j < m; ++j) {
     sample_start[j] = sample_basis.size();
     const Span& sp = spans[j];
     for (; k < pieces.size() && pieces[k].span == j; ++k) {
+      piece_sample[k] = sample_basis.size();
       const Piece& pc = pieces[k];
       const int count = std::clamp(static_cast<int>(std::ceil(pc.length / (0.25 * tolerance_mm))), 4, 32);
       const bool last_piece = k + 1 == pieces.size() || pieces[k + 1].span != j;
       for (int q = 0; q <= count; ++q) {
         if (q == count && !last_piece) break;  // the next piece's first sample
-        Sample smp{j, {}};
+        Sample smp{j, k, {}};
         for (std::size_t i = 0; i <= degree; ++i)
           smp.b[i] = derivative(sp.basis[i], 0, pc.start - sp.start + pc.length * q / count);
         sample_basis.push_back(smp);
       }
     }
-    const auto line = static_cast<long>(sp.line), last = static_cast<long>(sp.last_line);
-    long lo = line, hi = last;
-    while (lo > 0 && s[static_cast<std::size_t>(lo)] > sp.start - reach) --lo;
-    while (hi + 1 < static_cast<long>(n) && s[static_cast<std::size_t>(hi) + 1] < sp.start + sp.length + reach) ++hi;
-    window[j] = {std::min(lo, line - 1), std::max(hi, last + 1)};
+
   }
   sample_start[m] = sample_basis.size();
+  piece_sample[pieces.size()] = sample_basis.size();
 
   std::vector<double> factor(m, 1.0);  // weight factor of each span's data points
   const double target = tolerances::smooth_tolerance_share * tolerance_mm;
@@ -279,13 +287,16 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
     for (std::size_t j = 0; j < m; ++j) {
       double d = 0.0;
       for (std::size_t q = sample_start[j]; q < sample_start[j + 1]; ++q)
-        d = std::max(d, polyline_distance(v, samples[q], window[j].first, window[j].second));
+        d = std::max(d, polyline_distance(v, samples[q], window[sample_basis[q].piece].first,
+                                          window[sample_basis[q].piece].second));
       deviation[j] = d;
     }
     for (std::size_t i = 1; i < n; ++i) {
       const std::size_t j = vertex_span[i];  // the span that starts at vertex i, or has it inside
+      const std::size_t k = line_piece[i];   // the first piece of line i
       double d = std::numeric_limits<double>::infinity();
-      const std::size_t q0 = sample_start[j >= 2 ? j - 2 : 0], q1 = sample_start[std::min(m, j + 2)];
+      // the samples of the two pieces before the vertex and the two after (dense: the spans)
+      const std::size_t q0 = piece_sample[k >= 2 ? k - 2 : 0], q1 = piece_sample[std::min(pieces.size(), k + 2)];
       for (std::size_t q = q0; q + 1 < q1; ++q) d = std::min(d, segment_distance(v[i], samples[q], samples[q + 1]));
       if (j > 0 && spans[j].start == s[i]) deviation[j - 1] = std::max(deviation[j - 1], d);
       deviation[j] = std::max(deviation[j], d);
@@ -329,13 +340,13 @@ std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& v, const Vec3& 
   // span that strays, until the fit keeps the tolerance; when no straying span has a vertex left
   // inside, the fit raises the weights there instead, as the dense fit does.
   std::vector<char> knot_at(n + 1, 0);
-  const std::size_t step =
-      std::max<std::size_t>(1, std::min<std::size_t>(tolerances::compress_spline_initial_lines, n / 4));
+  const std::size_t step = std::max<std::size_t>(1, n / tolerances::compress_spline_initial_spans);
   for (std::size_t i = step; i + step / 2 < n; i += step) knot_at[i] = 1;
   for (int round = 0; round < tolerances::compress_spline_knot_rounds; ++round) {
     Attempt a = fit_with_knots(v, s, knot_at, true, start_tangent, end_tangent, tolerance_mm,
                                tolerances::compress_spline_round_iterations);
     if (a.fit) return a.fit;
+    if (options.max_control_points > 0 && a.deviation.size() + 3 > options.max_control_points) return std::nullopt;
     const double target = tolerances::smooth_tolerance_share * tolerance_mm;
     bool added = false;
     for (std::size_t j = 0; j < a.deviation.size(); ++j) {
@@ -345,6 +356,11 @@ std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& v, const Vec3& 
       }
     }
     if (!added) break;
+  }
+  if (options.max_control_points > 0) {
+    std::size_t spans = 1;
+    for (std::size_t i = 1; i < n; ++i) spans += knot_at[i] != 0 ? 1 : 0;
+    if (spans + 3 > options.max_control_points) return std::nullopt;
   }
   return fit_with_knots(v, s, knot_at, true, start_tangent, end_tangent, tolerance_mm, tolerances::smooth_fit_iterations)
       .fit;

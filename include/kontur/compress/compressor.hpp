@@ -13,9 +13,9 @@
 // the program relies on them.
 //
 // The result is checked apart from the fit: the written program is read again, and for every run
-// the distance of its new path (sampled) from the programmed lines, and of every programmed vertex
-// from the new path, must be within the tolerance; a run that is not is written as it was. The
-// blocks outside the runs must come out the same as before.
+// the distance of each new piece (sampled) from its programmed lines, and of every programmed vertex
+// from the new piece, must be within the tolerance; a piece that is not is written as its lines,
+// and the whole is checked again. The blocks outside the runs must come out the same as before.
 #include <kontur/compress/piece_fit.hpp>
 #include <kontur/gcode/reader.hpp>
 
@@ -57,6 +57,7 @@ struct CompressResult {
   std::size_t feed_blocks_out = 0;  ///< of the output (a spline: a block per control point and knot line)
   std::size_t input_blocks = 0;     ///< all blocks of the input
   double max_deviation_mm = 0.0;    ///< largest deviation of a compressed run [mm]
+  std::size_t pieces_rewritten = 0; ///< pieces the check found out of tolerance, written as their lines
 };
 
 /// Compresses the program `path`. Throws InputError for a program Kontur cannot read, or a

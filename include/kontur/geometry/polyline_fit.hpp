@@ -34,11 +34,14 @@ struct PolylineFit {
 struct PolylineFitOptions {
   /// false: a knot at every vertex, each line its own span (the planner's smoothing: a move per
   /// programmed line). true: as few knots as keep the tolerance (`kontur compress`: a control point
-  /// per block written): first a knot every tolerances::compress_spline_initial_lines lines (at
-  /// least four spans), then one more at the middle vertex of every span that strays, fitted again,
+  /// per block written): first tolerances::compress_spline_initial_spans spans (knots at evenly
+  /// spaced vertices), then one more at the middle vertex of every span that strays, fitted again,
   /// at most tolerances::compress_spline_knot_rounds times; the weights are raised as above where
   /// a straying span has no vertex left inside.
   bool few_knots = false;
+  /// With few knots: give up (empty result) as soon as the fit would need more control points than
+  /// this (0: no limit). A caller that writes the curve only if it is shorter than the lines says so.
+  std::size_t max_control_points = 0;
 };
 
 /// The fit of `vertices` (at least 5: four lines or more, none shorter than 1e-9 of the whole)
