@@ -225,3 +225,19 @@ kontur_cli_case(replay_not_a_stream 1 "square_arc\\.ngc: the header \\(64 bytes\
                 examples/programs/square_arc.ngc)
 kontur_cli_case(run_segment_tolerance_too_small 1 "segment tolerance 1e-12 mm is below" run examples/programs/square_arc.ngc
                 --format segments --segment-tolerance 1e-12 -o -)
+
+# kontur compress: G01 runs fitted by fewer blocks (docs/compress.md)
+kontur_cli_case(compress_help 0 "Example" compress --help)
+kontur_cli_case(compress_example 0 "feed blocks +719 -> [0-9]+ \\(([4-9]|[1-9][0-9]+)\\.[0-9]+ times fewer\\).*deviation +0\\.00[0-9]+ mm at most"
+                compress examples/programs/dense_g01_contour.ngc -o /tmp/kontur_cli_compress.ngc --tolerance 0.01)
+kontur_cli_case(compress_report 0 "" compress examples/programs/dense_g01_contour.ngc -o /tmp/kontur_cli_compress_r.ngc
+                --report /tmp/kontur_cli_compress_r.json --curves arcs,conics --quiet)
+kontur_cli_case(compress_missing_file 1 "no-such-program\\.ngc" compress no-such-program.ngc -o /tmp/kontur_cli_compress_missing.ngc)
+kontur_cli_case(compress_zero_tolerance 1 "--tolerance 0: must be a positive number of mm" compress
+                examples/programs/dense_g01_contour.ngc -o /tmp/kontur_cli_compress_tol.ngc --tolerance 0)
+kontur_cli_case(compress_output_is_input 1 "dense_g01_contour\\.ngc" compress examples/programs/dense_g01_contour.ngc
+                -o examples/programs/dense_g01_contour.ngc)
+kontur_cli_case(compress_unknown_curve 2 "unknown curve 'ellipses'" compress examples/programs/dense_g01_contour.ngc
+                -o /tmp/kontur_cli_compress_curve.ngc --curves arcs,ellipses)
+kontur_cli_case(compress_bad_program 1 "knot_count\\.ngc:[0-9]+:[0-9]+: G0?6\\.2: [0-9]+ knots given" compress
+                tests/data/gcode/bad/knot_count.ngc -o /tmp/kontur_cli_compress_bad.ngc)
