@@ -263,6 +263,9 @@ inline constexpr int compress_decimals_inch = 5;
 /// for a better centre (golden section, at most compress_arc_search_steps evaluations).
 inline constexpr double compress_arc_search_tolerances = 3.0;
 inline constexpr int compress_arc_search_steps = 16;
+/// Largest change of direction [rad] at the joint of two written pieces that counts as tangent
+/// (the compressor prefers such smooth joints: a planner need not slow down there).
+inline constexpr double compress_kink_rad = 1e-4;
 /// Largest radius of a written arc, in multiples of its chord (a flatter arc is a line).
 inline constexpr double compress_max_radius_chords = 1e4;
 /// Samples per input line of the independent deviation check (at least), and the step of the

@@ -46,7 +46,9 @@ struct Frame {
 // within `tol`? The arcs through the two ends form a family with their centres on the chord's
 // bisector; the one through v[(a+b)/2] is tried first, and if it strays, the one whose largest
 // deviation is least (golden-section search between the circles through the ends and each vertex).
-bool arc_fits(const std::vector<Vec3>& v, std::size_t a, std::size_t b, const Frame& f, double tol, Piece* out) {
+// With `tangent` (a unit vector in the frame's plane), only the arc that starts along it is tried.
+bool arc_fits(const std::vector<Vec3>& v, std::size_t a, std::size_t b, const Frame& f, double tol, Piece* out,
+              const Vec3* tangent = nullptr) {
   const std::size_t mid = (a + b) / 2, count = b - a + 1;
   std::vector<Eigen::Vector2d> q(count);
   std::vector<double> h(count);
@@ -114,8 +116,20 @@ bool arc_fits(const std::vector<Vec3>& v, std::size_t a, std::size_t b, const Fr
     const Eigen::Vector2d w = m - q[mid - a];
     return (half2 - w.squaredNorm()) / (2.0 * nrm.dot(w));
   }();
-  double t = tm, e = error(tm);
-  if (e > tol && e < tolerances::compress_arc_search_tolerances * tol && count > 3) {
+  double t = tm;
+  if (tangent != nullptr) {
+    // the centre on the bisector and on the normal of the tangent at v[a]: (c - pa) . t = 0
+    const Eigen::Vector2d t2(tangent->dot(f.e1), tangent->dot(f.e2));
+    const double den = nrm.dot(t2);
+    if (!(std::abs(den) > 1e-12)) return false;  // along the chord: a line
+    t = -(m - pa).dot(t2) / den;
+    // the arc must leave along the tangent, not against it
+    const Eigen::Vector2d c = m + t * nrm, radius = pa - c;
+    const Eigen::Vector2d along = dir * Eigen::Vector2d(-radius.y(), radius.x());
+    if (!(along.dot(t2) > 0.0)) return false;
+  }
+  double e = error(t);
+  if (tangent == nullptr && e > tol && e < tolerances::compress_arc_search_tolerances * tol && count > 3) {
     double lo = tm, hi = tm;
     for (std::size_t k = 1; k + 1 < count; ++k) {
       const Eigen::Vector2d w = m - q[k];
@@ -160,18 +174,33 @@ bool arc_fits(const std::vector<Vec3>& v, std::size_t a, std::size_t b, const Fr
     const double half_way = std::atan2(pa.y() - c.y(), pa.x() - c.x()) + dir * 0.5 * swept[count - 1];
     out->via[0] = f.origin + (c.x() + r * std::cos(half_way)) * f.e1 + (c.y() + r * std::sin(half_way)) * f.e2 +
                   0.5 * (h[0] + h[count - 1]) * f.n;
+    // the tangents at the ends (a helix's rise along the normal included)
+    const double length = r * swept[count - 1];
+    auto tangent_at = [&](const Eigen::Vector2d& p) {
+      const Eigen::Vector2d radius = p - c, along = dir * Eigen::Vector2d(-radius.y(), radius.x()) / radius.norm();
+      return Vec3(along.x() * f.e1 + along.y() * f.e2 + (h[count - 1] - h[0]) / length * f.n).normalized();
+    };
+    out->start_tangent = tangent_at(pa);
+    out->end_tangent = tangent_at(pb);
   }
   return true;
 }
 
-bool planar_arc_fits(const std::vector<Vec3>& v, std::size_t a, std::size_t b, int plane, double tol, Piece* out) {
+bool planar_arc_fits(const std::vector<Vec3>& v, std::size_t a, std::size_t b, int plane, double tol, Piece* out,
+                     const Vec3* tangent = nullptr) {
   const auto& ax = plane_axes[static_cast<std::size_t>(plane)];
   Frame f;
   f.origin = v[a];
   f.e1 = Vec3::Unit(ax[0]);
   f.e2 = Vec3::Unit(ax[1]);
   f.n = Vec3::Unit(ax[2]);
-  if (!arc_fits(v, a, b, f, tol, out)) return false;
+  if (tangent != nullptr) {
+    // the tangent in the plane; a helix would leave it by its rise: allowed up to the kink limit
+    if (std::abs(tangent->dot(f.n)) > tolerances::compress_kink_rad) return false;
+    const double rise = (v[b] - v[a]).dot(f.n), run = (v[b] - v[a]).norm();
+    if (std::abs(rise) > tolerances::compress_kink_rad * run) return false;
+  }
+  if (!arc_fits(v, a, b, f, tol, out, tangent)) return false;
   if (out != nullptr) {
     out->kind = PieceKind::arc;
     out->plane = plane;
@@ -212,6 +241,7 @@ bool line_fits(const std::vector<Vec3>& v, std::size_t a, std::size_t b, double 
   if (out != nullptr) {
     out->kind = PieceKind::line;
     out->deviation_mm = worst;
+    out->start_tangent = out->end_tangent = d.normalized();
   }
   return true;
 }
@@ -301,7 +331,10 @@ std::vector<Piece> fit_pieces(const std::vector<Vec3>& v, double tolerance_mm, c
   const std::size_t n = v.size() - 1;
   const double tol = tolerances::compress_fit_share * tolerance_mm;
 
-  // Greedy: from each vertex the piece that reaches farthest.
+  // Greedy: from each vertex the piece that reaches farthest; where the last piece ended with a
+  // tangent, the smooth pieces (a line along it, an arc leaving along it) are preferred while they
+  // reach at least half as far: the path stays tangent-continuous, which a planner runs faster.
+  std::optional<Vec3> tangent;  // the end tangent of the piece before (none: free)
   for (std::size_t a = 0; a < n;) {
     Piece best;
     best.kind = PieceKind::line;
@@ -324,7 +357,34 @@ std::vector<Piece> fit_pieces(const std::vector<Vec3>& v, double tolerance_mm, c
         consider(2, [&](std::size_t b, Piece* out) { return planar_arc_fits(v, a, b, plane, tol, out); });
     if (kinds.arcs_3d) consider(2, [&](std::size_t b, Piece* out) { return arc_3d_fits(v, a, b, tol, out); });
     if (kinds.conics) consider(4, [&](std::size_t b, Piece* out) { return conic_fits(v, a, b, tol, out); });
+    if (tangent && kinds.arcs) {
+      const Vec3 t_in = *tangent;
+      Piece smooth;
+      smooth.first = a;
+      smooth.last = a;
+      if (best.kind == PieceKind::line && best.start_tangent.dot(t_in) >= std::cos(tolerances::compress_kink_rad))
+        smooth = best;
+      for (int plane = 0; plane < 3; ++plane) {
+        auto fits = [&](std::size_t b, Piece* out) { return planar_arc_fits(v, a, b, plane, tol, out, &t_in); };
+        const std::size_t b = farthest(a, a + 1, n, [&](std::size_t e) { return fits(e, nullptr); });
+        if (b > smooth.last) {
+          Piece p;
+          p.first = a;
+          p.last = b;
+          fits(b, &p);
+          smooth = p;
+        }
+      }
+      if (smooth.last > a && 2 * (smooth.last - a) >= best.last - a) best = smooth;
+    }
     pieces.push_back(best);
+    if (best.kind == PieceKind::line || best.kind == PieceKind::arc)
+      tangent = best.end_tangent;
+    else
+      tangent.reset();
+    // a corner of the programmed path (beyond smooth_max_turn) starts free
+    if (tangent && best.last < n && tangent->dot((v[best.last + 1] - v[best.last]).normalized()) < tolerances::smooth_max_turn_cos)
+      tangent.reset();
     a = best.last;
   }
   if (!kinds.splines) return pieces;

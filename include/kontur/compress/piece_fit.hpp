@@ -42,6 +42,7 @@ struct Piece {
   std::array<Vec3, 3> via{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};  ///< arc_3d: via[0]; conic: all three
   std::optional<NurbsCurve> spline; ///< spline: the curve (u = arc length of the covered lines [mm])
   double deviation_mm = 0.0;        ///< the fit's own estimate (the written program is checked apart)
+  Vec3 start_tangent = Vec3::Zero(), end_tangent = Vec3::Zero();  ///< line, arc: unit tangents at the ends
 };
 
 /// The pieces of the run through `vertices` (at least two, no two consecutive equal) within
