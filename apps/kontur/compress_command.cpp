@@ -151,9 +151,9 @@ void register_compress_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--quiet", opts->quiet, "print nothing on success");
   add_program_read_options(cmd, opts->read);
   cmd->footer(
-      "The output is read again and checked: every run's new path (sampled) within the tolerance of its\n"
-      "programmed lines and every programmed point within the tolerance of the new path; a run that is not\n"
-      "is written as programmed. docs/compress.md has the rules.\n"
+      "The output is read again and checked: every new piece (sampled) within the tolerance of its\n"
+      "programmed lines and every programmed point within the tolerance of the new piece; a piece that is\n"
+      "not is written as its lines. docs/compress.md has the rules.\n"
       "Example:\n  kontur compress ../shared/data/gcode/3D_Chips.ngc -o chips_compressed.ngc --tolerance 0.01\n"
       "Exit codes: 0 written, 1 invalid program, value or file, 2 wrong command line, 3 internal error.");
   cmd->callback([opts, &exit_code]() {

@@ -148,21 +148,34 @@ struct CheckFailure {
   std::size_t run = 0, piece = 0;
 };
 
-// The output line `line` belongs to which run and piece (false: none).
-bool locate(const std::vector<RunState>& runs, long line, CheckFailure& where) {
+// Which run and piece each written output line belongs to: (first line, last line, run, piece) of
+// every active piece, in line order.
+struct PieceLines {
+  long first = 0, last = 0;
+  std::size_t run = 0, piece = 0;
+};
+
+std::vector<PieceLines> piece_lines(const std::vector<RunState>& runs) {
+  std::vector<PieceLines> out;
   for (std::size_t r = 0; r < runs.size(); ++r) {
     const RunState& st = runs[r];
-    if (!st.active || line < st.output_line || line >= st.output_line + static_cast<long>(st.out.lines)) continue;
-    for (std::size_t p = 0; p < st.out.piece_lines.size(); ++p) {
-      const long first = st.output_line + static_cast<long>(st.out.piece_lines[p].first);
-      const long last = st.output_line + static_cast<long>(st.out.piece_lines[p].second);
-      if (line >= first && line <= last) {
-        where = {r, p};
-        return true;
-      }
-    }
+    if (!st.active) continue;
+    for (std::size_t p = 0; p < st.out.piece_lines.size(); ++p)
+      out.push_back(PieceLines{st.output_line + static_cast<long>(st.out.piece_lines[p].first),
+                               st.output_line + static_cast<long>(st.out.piece_lines[p].second), r, p});
   }
-  return false;
+  return out;
+}
+
+// The output line `line` belongs to which run and piece (false: none).
+bool locate(const std::vector<PieceLines>& index, long line, CheckFailure& where) {
+  const auto it = std::upper_bound(index.begin(), index.end(), line,
+                                   [](long l, const PieceLines& p) { return l < p.first; });
+  if (it == index.begin()) return false;
+  const PieceLines& p = *(it - 1);
+  if (line > p.last) return false;
+  where = {p.run, p.piece};
+  return true;
 }
 
 // The independent check: the output read again by Kontur's reader; for each written piece the
@@ -179,13 +192,14 @@ void check_output(const std::string& name, const std::string& output, const gcod
     samples[r].assign(states[r].pieces.size(), {});
   }
   std::vector<BlockRecord> outside;
+  const std::vector<PieceLines> index = piece_lines(states);
   try {
     gcode::Reader reader(name, output, options);
     Block b;
     while (reader.next(b)) {
       const BlockRecord rec = record_of(b, name);
       CheckFailure at;
-      if (!rec.main_file || !locate(states, rec.line, at)) {
+      if (!rec.main_file || !locate(index, rec.line, at)) {
         outside.push_back(rec);
         continue;
       }
@@ -203,7 +217,7 @@ void check_output(const std::string& name, const std::string& output, const gcod
     long line = 0;
     if (what.rfind(name + ":", 0) == 0) line = std::atol(what.c_str() + name.size() + 1);
     CheckFailure at;
-    if (!locate(states, line, at)) throw;
+    if (!locate(index, line, at)) throw;
     states[at.run].piece_deviation[at.piece] = std::numeric_limits<double>::infinity();
     return;
   }

@@ -342,21 +342,22 @@ std::vector<Piece> fit_pieces(const std::vector<Vec3>& v, double tolerance_mm, c
     best.last = farthest(a, a + 1, n, [&](std::size_t b) { return line_fits(v, a, b, tol, nullptr); });
     if (best.last == a) best.last = a + 1;  // a single line always fits
     line_fits(v, a, best.last, tol, &best);
-    auto consider = [&](std::size_t min_lines, const std::function<bool(std::size_t, Piece*)>& fits) {
+    // `into` becomes the piece `fits` makes from a to the farthest vertex (from a + min_lines on) if
+    // that is farther than where `into` ends
+    auto extend = [&](Piece& into, std::size_t min_lines, const std::function<bool(std::size_t, Piece*)>& fits) {
       const std::size_t b = farthest(a, a + min_lines, n, [&](std::size_t e) { return fits(e, nullptr); });
-      if (b > best.last) {
-        Piece p;
-        p.first = a;
-        p.last = b;
-        fits(b, &p);
-        best = p;
-      }
+      if (b <= into.last) return;
+      Piece p;
+      p.first = a;
+      p.last = b;
+      fits(b, &p);
+      into = p;
     };
     if (kinds.arcs)
       for (int plane = 0; plane < 3; ++plane)
-        consider(2, [&](std::size_t b, Piece* out) { return planar_arc_fits(v, a, b, plane, tol, out); });
-    if (kinds.arcs_3d) consider(2, [&](std::size_t b, Piece* out) { return arc_3d_fits(v, a, b, tol, out); });
-    if (kinds.conics) consider(4, [&](std::size_t b, Piece* out) { return conic_fits(v, a, b, tol, out); });
+        extend(best, 2, [&](std::size_t b, Piece* out) { return planar_arc_fits(v, a, b, plane, tol, out); });
+    if (kinds.arcs_3d) extend(best, 2, [&](std::size_t b, Piece* out) { return arc_3d_fits(v, a, b, tol, out); });
+    if (kinds.conics) extend(best, 4, [&](std::size_t b, Piece* out) { return conic_fits(v, a, b, tol, out); });
     if (tangent && kinds.arcs) {
       const Vec3 t_in = *tangent;
       Piece smooth;
@@ -364,17 +365,8 @@ std::vector<Piece> fit_pieces(const std::vector<Vec3>& v, double tolerance_mm, c
       smooth.last = a;
       if (best.kind == PieceKind::line && best.start_tangent.dot(t_in) >= std::cos(tolerances::compress_kink_rad))
         smooth = best;
-      for (int plane = 0; plane < 3; ++plane) {
-        auto fits = [&](std::size_t b, Piece* out) { return planar_arc_fits(v, a, b, plane, tol, out, &t_in); };
-        const std::size_t b = farthest(a, a + 1, n, [&](std::size_t e) { return fits(e, nullptr); });
-        if (b > smooth.last) {
-          Piece p;
-          p.first = a;
-          p.last = b;
-          fits(b, &p);
-          smooth = p;
-        }
-      }
+      for (int plane = 0; plane < 3; ++plane)
+        extend(smooth, 1, [&](std::size_t b, Piece* out) { return planar_arc_fits(v, a, b, plane, tol, out, &t_in); });
       if (smooth.last > a && 2 * (smooth.last - a) >= best.last - a) best = smooth;
     }
     pieces.push_back(best);
