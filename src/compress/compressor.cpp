@@ -9,8 +9,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
+#include <cstdlib>
+#include <limits>
+#include <stdexcept>
 
 namespace kontur::compress {
 
