@@ -87,8 +87,6 @@ nlohmann::ordered_json report_json(const CompressCommandOptions& o, const compre
 }
 
 void run_compress(const CompressCommandOptions& o) {
-  if (!(o.tolerance_mm > 0.0) || !std::isfinite(o.tolerance_mm))
-    throw InputError("tolerance", fmt::format("--tolerance {}: must be a positive number of mm", o.tolerance_mm));
   check_output_not_input(o.output, {o.program});
   if (!o.report.empty()) check_output_not_input(o.report, {o.program, o.output});
   compress::CompressOptions c;

@@ -2,7 +2,7 @@
 #include <kontur/error.hpp>
 #include <kontur/tolerances.hpp>
 
-#include "nearest_on_polyline.hpp"
+#include "two_way_distance.hpp"
 #include "program_text.hpp"
 
 #include <fmt/format.h>
@@ -124,15 +124,6 @@ std::vector<Vec3> run_vertices(const std::vector<BlockRecord>& blocks, const Run
   return v;
 }
 
-// Samples of a curve: at least `min_count` intervals, none longer than `step` of its parameter's
-// share of the length [mm].
-void sample_curve(const Curve& c, double length_mm, double step_mm, std::size_t min_count, std::vector<Vec3>& out) {
-  const auto count = std::max<std::size_t>(
-      min_count, static_cast<std::size_t>(std::ceil(std::min(1e6, length_mm / step_mm))));
-  for (std::size_t k = 1; k <= count; ++k)
-    out.push_back(c.point(c.u_min() + (c.u_max() - c.u_min()) * static_cast<double>(k) / static_cast<double>(count)));
-}
-
 // A run as it is being written: its vertices in machine coordinates (what is checked) and in the
 // program's frame [mm] (what is fitted and written), its pieces and their text.
 struct RunState {
@@ -209,7 +200,9 @@ void check_output(const std::string& name, const std::string& output, const gcod
       if (const Curve* c = b.curve()) {
         const double len = b.length_mm().value_or((b.end - b.start).norm());
         const std::size_t min_count = b.type == BlockType::line ? 1 : tolerances::compress_check_samples_per_line;
-        sample_curve(*c, len, tolerances::compress_check_step_tolerances * tol, min_count, s);
+        // at least min_count steps, none longer than the check's step [mm]
+        const double steps = std::ceil(std::min(1e6, len / (tolerances::compress_check_step_tolerances * tol)));
+        detail::append_samples(*c, std::max(min_count, static_cast<std::size_t>(steps)), s);
       }
     }
   } catch (const InputError& e) {
@@ -231,13 +224,9 @@ void check_output(const std::string& name, const std::string& output, const gcod
         st.piece_deviation[p] = std::numeric_limits<double>::infinity();  // its blocks went missing
         continue;
       }
-      const std::vector<Vec3> lines(st.machine.begin() + static_cast<long>(st.pieces[p].first),
-                                    st.machine.begin() + static_cast<long>(st.pieces[p].last) + 1);
-      detail::NearestOnPolyline to_lines(lines, tol), to_curve(s, tol);
-      double worst = 0.0;
-      for (const Vec3& q : s) worst = std::max(worst, to_lines.distance(q));
-      for (const Vec3& v : lines) worst = std::max(worst, to_curve.distance(v));
-      st.piece_deviation[p] = worst;
+      const Piece& piece = st.pieces[p];
+      st.piece_deviation[p] =
+          detail::two_way_distance(std::span(st.machine).subspan(piece.first, piece.last - piece.first + 1), s, tol);
     }
   }
   // outside the runs: the same blocks, ending at the same points

@@ -5,7 +5,7 @@
 #include <kontur/geometry/polyline_fit.hpp>
 #include <kontur/tolerances.hpp>
 
-#include "nearest_on_polyline.hpp"
+#include "two_way_distance.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -25,6 +25,11 @@ const char* to_string(PieceKind kind) noexcept {
   return "line";
 }
 
+std::array<int, 3> plane_axes(int plane) noexcept {
+  static constexpr std::array<std::array<int, 3>, 3> axes{{{0, 1, 2}, {2, 0, 1}, {1, 2, 0}}};
+  return axes[static_cast<std::size_t>(std::clamp(plane, 0, 2))];
+}
+
 std::size_t spline_block_lines(const NurbsCurve& spline) noexcept {
   return spline.points().size() + static_cast<std::size_t>(spline.degree()) + 1;
 }
@@ -33,9 +38,6 @@ namespace {
 
 constexpr double two_pi = 2.0 * std::numbers::pi;
 
-// The axes of a principal plane: first, second (counter-clockwise from first to second about the
-// normal) and the normal: G17 X Y (Z), G18 Z X (Y), G19 Y Z (X).
-constexpr std::array<std::array<int, 3>, 3> plane_axes{{{0, 1, 2}, {2, 0, 1}, {1, 2, 0}}};
 
 // A plane to measure an arc in: origin, two in-plane unit vectors and the normal.
 struct Frame {
@@ -188,7 +190,7 @@ bool arc_fits(const std::vector<Vec3>& v, std::size_t a, std::size_t b, const Fr
 
 bool planar_arc_fits(const std::vector<Vec3>& v, std::size_t a, std::size_t b, int plane, double tol, Piece* out,
                      const Vec3* tangent = nullptr) {
-  const auto& ax = plane_axes[static_cast<std::size_t>(plane)];
+  const std::array<int, 3> ax = plane_axes(plane);
   Frame f;
   f.origin = v[a];
   f.e1 = Vec3::Unit(ax[0]);
@@ -246,18 +248,6 @@ bool line_fits(const std::vector<Vec3>& v, std::size_t a, std::size_t b, double 
   return true;
 }
 
-// The two-way distance between a sampled curve and the lines a..b: every sample from the lines,
-// every vertex from the samples' polyline.
-double sampled_deviation(const std::vector<Vec3>& v, std::size_t a, std::size_t b, const std::vector<Vec3>& samples,
-                         double tol) {
-  const std::vector<Vec3> lines(v.begin() + static_cast<long>(a), v.begin() + static_cast<long>(b) + 1);
-  detail::NearestOnPolyline to_lines(lines, tol), to_curve(samples, tol);
-  double worst = 0.0;
-  for (const Vec3& q : samples) worst = std::max(worst, to_lines.distance(q));
-  for (const Vec3& p : lines) worst = std::max(worst, to_curve.distance(p));
-  return worst;
-}
-
 bool conic_fits(const std::vector<Vec3>& v, std::size_t a, std::size_t b, double tol, Piece* out) {
   const std::size_t span = b - a;
   const std::array<std::size_t, 5> at{a, a + span / 4, a + span / 2, a + 3 * span / 4, b};
@@ -271,11 +261,9 @@ bool conic_fits(const std::vector<Vec3>& v, std::size_t a, std::size_t b, double
     options.plane_tolerance_mm = std::min(0.5 * tol, 0.5 * tolerances::gcode_conic_plane_mm);
     const ConicThroughPoints fit = conic_through_points(pts, options);
     const ConicArc arc = fit.curve();
-    const std::size_t count = std::max<std::size_t>(32, 8 * span);
-    std::vector<Vec3> samples(count + 1);
-    for (std::size_t k = 0; k <= count; ++k)
-      samples[k] = arc.point(arc.u_min() + (arc.u_max() - arc.u_min()) * static_cast<double>(k) / static_cast<double>(count));
-    const double e = sampled_deviation(v, a, b, samples, tol);
+    std::vector<Vec3> samples{v[a]};
+    detail::append_samples(arc, std::max<std::size_t>(32, 8 * span), samples);
+    const double e = detail::two_way_distance(std::span(v).subspan(a, b - a + 1), samples, tol);
     if (!(e <= tol)) return false;
     if (out != nullptr) {
       out->kind = PieceKind::conic;

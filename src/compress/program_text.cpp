@@ -260,7 +260,6 @@ WrittenRun RunWriter::write(const std::vector<Vec3>& v, const std::vector<Piece>
   };
   static constexpr std::array<const char*, 3> plane_codes{"G17", "G18", "G19"};
   static constexpr char offset_names[3] = {'I', 'J', 'K'};
-  static constexpr std::array<std::array<int, 2>, 3> plane_axes{{{0, 1}, {2, 0}, {1, 2}}};
   const bool sinumerik = dialect_ == gcode::Dialect::sinumerik;
   for (std::size_t k = 0; k < pieces.size(); ++k) {
     const Piece& p = pieces[k];
@@ -276,7 +275,7 @@ WrittenRun RunWriter::write(const std::vector<Vec3>& v, const std::vector<Piece>
         const Vec3 from = position_;
         std::string words = p.plane != plane ? std::string(plane_codes[static_cast<std::size_t>(p.plane)]) + " " : "";
         const std::string to = axes(end, false, last);
-        const auto& ax = plane_axes[static_cast<std::size_t>(p.plane)];
+        const std::array<int, 3> ax = plane_axes(p.plane);
         if (from[ax[0]] == position_[ax[0]] && from[ax[1]] == position_[ax[1]]) {
           block("G1" + to + f());  // the arc's chord rounds to nothing in its plane: a line (checked)
           break;

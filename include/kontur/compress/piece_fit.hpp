@@ -50,6 +50,11 @@ struct Piece {
 [[nodiscard]] std::vector<Piece> fit_pieces(const std::vector<Vec3>& vertices, double tolerance_mm,
                                             const CurveKinds& kinds);
 
+/// The axes (0 X, 1 Y, 2 Z) of principal plane `plane` (0 G17, 1 G18, 2 G19): first, second
+/// (counter-clockwise from first to second about the normal, as G3 turns) and the normal:
+/// G17 X Y (Z), G18 Z X (Y), G19 Y Z (X).
+[[nodiscard]] std::array<int, 3> plane_axes(int plane) noexcept;
+
 /// Lines of a spline piece's block in a program (its control points, then the order's knots).
 [[nodiscard]] std::size_t spline_block_lines(const NurbsCurve& spline) noexcept;
 
