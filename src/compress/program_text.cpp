@@ -102,7 +102,6 @@ bool ProgramText::plain_feed_line(long line) const {
   if (dialect_ != gcode::Dialect::sinumerik && s.find('=') != std::string::npos) return false;  // an assignment
   const std::size_t lead = s.find_first_not_of(" \t");
   if (lead == std::string::npos || s[lead] == '/') return false;
-  bool g1 = false;
   for (std::size_t i = 0; i < s.size();) {
     const char c = s[i];
     if (c == ' ' || c == '\t') {
@@ -115,7 +114,6 @@ bool ProgramText::plain_feed_line(long line) const {
       const std::size_t from = j;
       while (j < s.size() && std::isdigit(static_cast<unsigned char>(s[j])) != 0) ++j;
       if (j == from || (j < s.size() && s[j] == '.') || std::atoi(s.substr(from, j - from).c_str()) != 1) return false;
-      g1 = true;
       i = j;
       continue;
     }
@@ -131,7 +129,6 @@ bool ProgramText::plain_feed_line(long line) const {
     }
     return false;
   }
-  (void)g1;
   return true;
 }
 

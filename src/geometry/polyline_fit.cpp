@@ -71,7 +71,7 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
     double start, length;
   };
   std::vector<Piece> pieces;
-  std::vector<std::size_t> vertex_span(n + 1);  // the span each vertex starts or lies in
+  std::vector<std::size_t> vertex_span(n);  // the span each vertex (but the last) starts or lies in
   std::vector<int> parts(n, 1);  // spans (or pieces of one) of each line; few knots: one
   if (!few_knots)
     for (std::size_t i = 0; i < n; ++i)
@@ -100,7 +100,6 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
       if (new_span) knots.push_back(end);
     }
   }
-  vertex_span[n] = spans.size();
   for (int i = 0; i < 4; ++i) knots.push_back(total);
   const std::size_t m = spans.size();
   result.deviation.assign(m, std::numeric_limits<double>::infinity());
