@@ -5,6 +5,7 @@
 
 #include <kontur/error.hpp>
 #include <kontur/gcode/reader.hpp>
+#include <kontur/report/program_check.hpp>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -54,54 +55,11 @@ void run_check(const CheckOptions& o) {
   // The dialect line goes to stderr, except in JSON (it is a field there).
   const gcode::ReaderOptions ro = reader_options(o.read, o.file, nullptr, o.json);
   // Validate first: a program with an error prints nothing but the error (and exits 1).
-  const gcode::ProgramSummary s = gcode::check_program(o.file, ro);
   if (o.json) {
-    nlohmann::ordered_json j;
-    j["file"] = o.file;
-    j["valid"] = true;
-    j["dialect"] = {{"name", gcode::to_string(s.dialect.dialect)}, {"reason", s.dialect.reason}};
-    auto& blocks = j["blocks"] = nlohmann::ordered_json::array();
-    if (!o.quiet)
-      gcode::check_program(o.file, ro, [&](const gcode::Block& b, std::optional<double> len) {
-        nlohmann::ordered_json e;
-        e["line"] = b.location.line;
-        e["column"] = b.location.column;
-        if (b.location.n_number >= 0) e["n"] = b.location.n_number;
-        e["type"] = gcode::to_string(b.type);
-        if (len) e["length_mm"] = *len;
-        else e["length_mm"] = nullptr;
-        e["feed"] = b.type == gcode::BlockType::rapid || b.type == gcode::BlockType::dwell ? 0.0 : b.feed.value;
-        e["feed_mode"] = b.feed.mode == gcode::FeedMode::inverse_time ? "inverse_time" : "mm_per_min";
-        if (b.type == gcode::BlockType::dwell) e["dwell_s"] = b.dwell_s;
-        if (b.canned_cycle) e["canned_cycle"] = fmt::format("G{}", b.canned_cycle);
-        e["end"] = {b.end.x(), b.end.y(), b.end.z()};
-        if (b.moves_extra_axes()) {  // only the extra axes that move: A B C [deg], U V W [mm]
-          nlohmann::ordered_json es = nlohmann::ordered_json::object(), ee = nlohmann::ordered_json::object();
-          for (std::size_t i = 0; i < b.extra_start.size(); ++i)
-            if (b.extra_start[i] != b.extra_end[i]) {
-              const std::string letter(1, extra_axis_letters[i]);
-              es[letter] = b.extra_start[i];
-              ee[letter] = b.extra_end[i];
-            }
-          e["extra_start"] = std::move(es);  // (a reference into e would not survive the next insertion)
-          e["extra_end"] = std::move(ee);
-        }
-        blocks.push_back(e);
-      });
-    auto& t = j["totals"];
-    t["lines"] = s.lines;
-    t["blocks"] = s.blocks;
-    for (int i = 0; i < gcode::block_type_count; ++i)
-      t["by_type"][gcode::to_string(static_cast<gcode::BlockType>(i))] = s.by_type[static_cast<std::size_t>(i)];
-    t["path_length_mm"] = s.path_length_mm;
-    t["rapid_length_mm"] = s.rapid_length_mm;
-    t["dwell_s"] = s.dwell_s;
-    t["blocks_without_length"] = s.blocks_without_length;
-    t["warnings"] = s.warnings;
-    t["warning_count"] = s.warning_count;
-    fmt::print("{}\n", j.dump(2));
+    fmt::print("{}\n", report::program_check_json(o.file, ro, !o.quiet));
     return;
   }
+  const gcode::ProgramSummary s = gcode::check_program(o.file, ro);
   for (const auto& w : s.warnings) std::fprintf(stderr, "kontur: %s\n", w.c_str());
   if (!o.quiet) {
     fmt::print("{:>8} {:>7} {:<10} {:>16} {}\n", "line", "N", "type", "length [mm]", "feed");

@@ -1,5 +1,7 @@
 #include "program_options.hpp"
 
+#include <kontur/pipeline.hpp>
+
 #include <fmt/format.h>
 
 #include <cstdio>
@@ -25,30 +27,19 @@ void add_program_read_options(CLI::App* cmd, ProgramReadOptions& options) {
 
 gcode::ReaderOptions reader_options(const ProgramReadOptions& options, const std::string& program,
                                     const Machine* machine, bool quiet) {
-  gcode::ReaderOptions ro;
-  ro.block_delete = !options.no_block_delete;
-  ro.subroutine_path = options.subroutine_path;
-  if (!options.tool_table.empty())
-    ro.tool_table = std::make_shared<const gcode::ToolTable>(
-        gcode::ToolTable::read(options.tool_table, machine ? machine->tool_table_mm_per_unit : 1.0));
-  std::optional<gcode::Dialect> given;
+  ProgramReading reading;
+  reading.block_delete = !options.no_block_delete;
+  reading.subroutine_path = options.subroutine_path;
+  reading.tool_table = options.tool_table;
   if (!options.dialect.empty()) {
-    given = gcode::parse_dialect(options.dialect);
-    if (!given)
+    reading.dialect = gcode::parse_dialect(options.dialect);
+    if (!reading.dialect)
       throw CLI::ValidationError("--dialect", fmt::format("{}: not a G-code dialect (expected one of {})",
                                                           options.dialect, gcode::dialect_names()));
   }
-  // A program that cannot be opened is reported by the reader, with its own message.
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(program, ec)) {
-    ro.dialect = given;
-    return ro;
-  }
-  const gcode::DialectChoice choice = gcode::choose_dialect(
-      program, given, machine ? machine->dialect : std::nullopt, machine ? machine->source : std::string());
-  ro.dialect = choice.dialect;
-  ro.dialect_reason = choice.reason;
-  if (!quiet) std::fprintf(stderr, "kontur: dialect: %s (%s)\n", gcode::to_string(choice.dialect), choice.reason.c_str());
+  gcode::ReaderOptions ro = program_reader_options(program, reading, machine);
+  if (!quiet && !ro.dialect_reason.empty())
+    std::fprintf(stderr, "kontur: dialect: %s (%s)\n", gcode::to_string(*ro.dialect), ro.dialect_reason.c_str());
   return ro;
 }
 

@@ -10,6 +10,7 @@
 #include <functional>
 #include <kontur/axes.hpp>
 #include <kontur/gcode/reader.hpp>
+#include <kontur/io/setpoint_reader.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/program/move.hpp>
 #include <kontur/program/program_path.hpp>
@@ -51,6 +52,24 @@ struct RunResult {
   bool passed = false;
 };
 
+/// How a program is to be read, as a user gives it: the command's --dialect, --no-block-delete,
+/// --subroutine-path and --tool-table, the Python module's keywords of the same names.
+struct ProgramReading {
+  std::optional<gcode::Dialect> dialect;  ///< none: the machine's, else detected from the program
+  std::string given_reason = "given with --dialect";  ///< why, when `dialect` is given
+  bool block_delete = true;                  ///< skip lines starting with '/'
+  std::vector<std::string> subroutine_path;  ///< folders of subroutine files (empty: the machine's)
+  std::string tool_table;                    ///< tool table file (empty: the machine file's, if any)
+};
+
+/// The reader options for `program` on `machine` (may be null: then no machine's dialect and the
+/// tool table in [mm]): the dialect given, else the machine's, else detected from the program
+/// (gcode::choose_dialect), with the reason; the tool table read in the machine's linear units.
+/// A program that cannot be opened gets no dialect here (the reader reports it). Throws
+/// InputError for a broken tool table.
+[[nodiscard]] gcode::ReaderOptions program_reader_options(const std::string& program, const ProgramReading& reading,
+                                                          const Machine* machine);
+
 class Pipeline {
  public:
   /// Runs on `machine` (copied; validated by its reader) with `options`.
@@ -70,6 +89,14 @@ class Pipeline {
   /// `program` on the machine, streaming. Throws InputError for a program without motion, a file
   /// without setpoints, or a binary file written at another servo period.
   RunResult verify(const std::string& program, const std::string& setpoints, const PipelineEvents& events = {});
+  /// Where verify() takes setpoints from: it calls `header` once (the axes, and the period if the
+  /// source has one), then `visit` for each setpoint in order. A file (io/setpoint_reader.hpp), or
+  /// setpoints held in memory (the Python module's arrays).
+  using SetpointSource = std::function<void(const HeaderVisitor& header, const SetpointVisitor& visit)>;
+  /// The same check of the setpoints `source` gives; `source_name` names them in messages and in
+  /// the summary's "setpoint_file".
+  RunResult verify(const std::string& program, const std::string& source_name, const SetpointSource& source,
+                   const PipelineEvents& events = {});
 
   /// The moves of the path of the current or last run or verify, in order (moves()[id].id == id);
   /// the same vector for the pipeline's life (it grows while a run streams).

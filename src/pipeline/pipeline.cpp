@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
 #include <kontur/error.hpp>
+#include <kontur/gcode/tool_table.hpp>
+#include <memory>
 #include <kontur/io/setpoint_reader.hpp>
 #include <kontur/pipeline.hpp>
 #include <kontur/plan/constraints.hpp>
@@ -34,6 +37,29 @@ Pipeline::Pipeline(Machine machine, PipelineOptions options)
       path_(machine_, options.blend, options.smooth, [this](const Curve& blend, double feed_mm_s) {
         return plan::curve_speed_cap(blend, feed_mm_s, machine_);
       }) {}
+
+gcode::ReaderOptions program_reader_options(const std::string& program, const ProgramReading& reading,
+                                            const Machine* machine) {
+  gcode::ReaderOptions ro;
+  ro.block_delete = reading.block_delete;
+  ro.subroutine_path = reading.subroutine_path;
+  if (!reading.tool_table.empty())
+    ro.tool_table = std::make_shared<const gcode::ToolTable>(
+        gcode::ToolTable::read(reading.tool_table, machine ? machine->tool_table_mm_per_unit : 1.0));
+  // A program that cannot be opened is reported by the reader, with its own message.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(program, ec)) {
+    ro.dialect = reading.dialect;
+    return ro;
+  }
+  const gcode::DialectChoice choice =
+      reading.dialect ? gcode::DialectChoice{*reading.dialect, reading.given_reason}
+                      : gcode::choose_dialect(program, std::nullopt, machine ? machine->dialect : std::nullopt,
+                                              machine ? machine->source : std::string());
+  ro.dialect = choice.dialect;
+  ro.dialect_reason = choice.reason;
+  return ro;
+}
 
 gcode::ReaderOptions Pipeline::reader_options() const {
   gcode::ReaderOptions o = options_.reader;
@@ -116,6 +142,14 @@ RunResult Pipeline::run(const std::string& program, const PipelineEvents& events
 }
 
 RunResult Pipeline::verify(const std::string& program, const std::string& setpoints, const PipelineEvents& events) {
+  return verify(
+      program, setpoints,
+      [&](const HeaderVisitor& header, const SetpointVisitor& visit) { for_each_setpoint(setpoints, visit, header); },
+      events);
+}
+
+RunResult Pipeline::verify(const std::string& program, const std::string& setpoints, const SetpointSource& source,
+                           const PipelineEvents& events) {
   // The path, as run() builds it: the same corner blends, each checked against the programmed
   // lines it replaces.
   path_.read(program, {}, reader_options());
@@ -143,17 +177,15 @@ RunResult Pipeline::verify(const std::string& program, const std::string& setpoi
     layout_ = h.layout;
     checker = std::make_unique<verify::Checker>(moves, machine_, layout_, events.observer);
   };
-  for_each_setpoint(
-      setpoints,
-      [&](const trajectory::Setpoint& s) {
-        ++result.setpoints;
-        result.total_time_s = s.t_s;
-        if (events.setpoint) events.setpoint(s);
-        checker->add(s);
-      },
-      header);
+  source(header, [&](const trajectory::Setpoint& s) {
+    if (!checker) header(SetpointHeader{});  // a source without a header: X Y Z
+    ++result.setpoints;
+    result.total_time_s = s.t_s;
+    if (events.setpoint) events.setpoint(s);
+    checker->add(s);
+  });
   if (result.setpoints == 0)
-    throw InputError("setpoints-empty", fmt::format("{}: the file holds no setpoint", setpoints));
+    throw InputError("setpoints-empty", fmt::format("{}: holds no setpoint", setpoints));
   result.check = checker->finish();
   result.passed = result.check.passed(machine_);
   report::SummaryExtras extras;
