@@ -14,6 +14,9 @@ packages=(
   clang libclang-rt-14-dev  # the libFuzzer target of the G-code reader (fuzz/, docs/gcode.md)
   chromium    # the browser test of the HTML report (tests/browser), /usr/bin/chromium
   gcc-arm-none-eabi  # the lower level's build for a Cortex-M4 (lower_level/build_cortex_m4.sh, a test)
+  # The Python module (python/, docs/python.md): Debian's Python 3 with its headers, pybind11,
+  # numpy for the arrays, pytest for its tests, matplotlib for the example (examples/python/).
+  python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib
 )
 # Node.js and npm: Debian's packages, unless a node and an npm are already there (a Node.js from
 # another source ships its own npm, which Debian's npm package would conflict with).
