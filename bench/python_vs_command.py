@@ -6,7 +6,8 @@
   (wall time, best of --repeat; the ratio is the target: at most 1.10);
 * NurbsCurve.evaluate on 10^6 parameters against a Python loop calling it per parameter (the
   loop timed on 10^5 parameters and scaled; target: at least 20 times faster);
-* peak memory (ru_maxrss of a child process) of kontur.run against kontur.run_iter.
+* peak memory (VmHWM of a child process) of kontur.run against kontur.run_iter, at a 0.1 ms
+  servo period.
 
     PYTHONPATH=build/python /usr/bin/python3 bench/python_vs_command.py [--program P --machine M]
 """
@@ -14,7 +15,6 @@
 import argparse
 import os
 import pathlib
-import resource
 import subprocess
 import sys
 import tempfile
@@ -39,8 +39,10 @@ def best(f, repeat):
 
 def child_peak_mb(code):
     env = dict(os.environ, PYTHONPATH=str(ROOT / "build" / "python"))
-    out = subprocess.run([sys.executable, "-c", code + "\nimport resource;print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)"],
-                         capture_output=True, text=True, env=env, check=True).stdout.split()
+    # VmHWM, the process's own high-water mark (ru_maxrss would carry this process's over the fork).
+    probe = "\nprint([l.split()[1] for l in open('/proc/self/status') if l.startswith('VmHWM')][0])"
+    out = subprocess.run([sys.executable, "-c", code + probe], capture_output=True, text=True, env=env,
+                         check=True).stdout.split()
     return int(out[-1]) / 1024.0
 
 
@@ -77,10 +79,14 @@ def main():
     print(f"evaluate 10^6 parameters: vectorised {t_vec * 1e3:.1f} ms, Python loop {t_loop:.2f} s "
           f"(10^5 timed x 10): {t_loop / t_vec:.0f} times faster")
 
-    prog, mach = repr(a.program), repr(a.machine)
-    peak_run = child_peak_mb(f"import kontur; r = kontur.run({prog}, machine={mach})")
-    peak_iter = child_peak_mb(f"import kontur\nn = 0\nfor c in kontur.run_iter({prog}, machine={mach}, chunk=10000): n += len(c)")
-    print(f"peak memory: kontur.run {peak_run:.0f} MB, kontur.run_iter(chunk=10000) {peak_iter:.0f} MB")
+    # Memory at a 0.1 ms servo period (ten times the setpoints): one array against chunks.
+    prog = repr(a.program)
+    setup = f"import kontur\nm = kontur.Machine.load({a.machine!r})\nm.servo_period_s = 1e-4\n"
+    base = child_peak_mb("import kontur, numpy")
+    peak_run = child_peak_mb(setup + f"r = kontur.run({prog}, machine=m)\nprint(len(r.setpoints))")
+    peak_iter = child_peak_mb(setup + f"n = 0\nfor c in kontur.run_iter({prog}, machine=m, chunk=10000): n += len(c)")
+    print(f"peak memory at 0.1 ms: python with numpy {base:.0f} MB, kontur.run {peak_run:.0f} MB, "
+          f"kontur.run_iter(chunk=10000) {peak_iter:.0f} MB")
 
 
 if __name__ == "__main__":

@@ -11,8 +11,7 @@ if [ ! -f build/CMakeCache.txt ] || [ ! -d "$package_dir/kontur" ]; then
   echo "install-python: build/python/kontur is missing: run scripts/build.sh first" >&2
   exit 1
 fi
-py="$(sed -n 's/^Python_EXECUTABLE:FILEPATH=//p' build/CMakeCache.txt)"
-[ -n "$py" ] || py="$(sed -n 's/^Python_EXECUTABLE:[A-Z]*=//p' build/CMakeCache.txt)"
+py="$(sed -n 's/^Python_EXECUTABLE:[A-Z]*=//p' build/CMakeCache.txt)"
 if [ -z "$py" ]; then
   echo "install-python: the build found no Python (see the warning of cmake); nothing installed" >&2
   exit 1

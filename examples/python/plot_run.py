@@ -2,7 +2,7 @@
 """Plans a part program with Kontur's Python module and plots the path speed and the axis
 accelerations against the machine's limits (matplotlib; no display needed with --output).
 
-    python3 examples/python/plot_run.py                       # a shared NURBS program, XYZ.ini
+    python3 examples/python/plot_run.py                       # a shared CAM program, XYZ.ini
     python3 examples/python/plot_run.py PROGRAM.ngc --machine MACHINE.ini --output run.png
 
 The package must be importable: after scripts/setup.sh it is installed for python3; from a build
@@ -23,8 +23,8 @@ SHARED = ROOT.parent / "shared" / "data" / "gcode"
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("program", nargs="?", default=str(SHARED / "linuxcnc-nurbs" / "G6_Curva_Stella_n1-1.ngc"),
-                        help="part program (default: a shared LinuxCNC NURBS program)")
+    parser.add_argument("program", nargs="?", default=str(SHARED / "linuxcnc-tp" / "performance" / "3D_Chips.ngc"),
+                        help="part program (default: a shared CAM program of short lines, LinuxCNC's performance test)")
     parser.add_argument("--machine", default=str(SHARED / "linuxcnc-tp" / "configs" / "XYZ.ini"),
                         help="machine file, LinuxCNC INI or Kontur TOML (default: the shared XYZ.ini)")
     parser.add_argument("--output", default="plot_run.png", help="the plot's file (PNG, SVG or PDF)")
@@ -44,7 +44,11 @@ def main() -> int:
           f"{'PASS' if run.passed else 'FAIL'} (largest acceleration {run.summary['max_acceleration_ratio']:.3f} "
           f"of the limit, jerk {run.summary['max_jerk_ratio']:.3f})")
 
-    fig, (ax_path, ax_speed, ax_acc) = plt.subplots(3, 1, figsize=(10, 11), constrained_layout=True)
+    fig = plt.figure(figsize=(15, 8), constrained_layout=True)
+    grid = fig.add_gridspec(2, 2, width_ratios=[1, 1.4])
+    ax_path = fig.add_subplot(grid[:, 0])
+    ax_speed = fig.add_subplot(grid[0, 1])
+    ax_acc = fig.add_subplot(grid[1, 1], sharex=ax_speed)
     points = ax_path.scatter(sp["x"], sp["y"], c=sp["v"], s=1, cmap="viridis")
     fig.colorbar(points, ax=ax_path, label="path speed [mm/s]")
     ax_path.set(xlabel="X [mm]", ylabel="Y [mm]", title=pathlib.Path(args.program).name, aspect="equal")

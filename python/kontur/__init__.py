@@ -236,6 +236,29 @@ class NurbsCurve:
         u, points, span = self._c.forward_differences(float(step), bool(compensated), self.dimension, int(max_steps))
         return {"u": np.asarray(u), "points": np.asarray(points), "span": np.asarray(span)}
 
+    # -- interpolation at constant feed (seed 004)
+    def interpolate(self, feed: float, period: float = 0.001, interpolator: str = "exact",
+                    max_steps: int = 10_000_000) -> dict:
+        """Steps the curve at constant ``feed`` [mm/min], one setpoint per servo ``period`` [s]:
+        each cycle the parameter advances so that the tool moves ds = F T / 60 [mm] (the last
+        step ends at u_max). ``interpolator``: ``"exact"`` (Kontur's: the arc-length inverse,
+        distances exact to ~1e-12), ``"taylor1"`` or ``"taylor2"`` (seed 004's first- and
+        second-order Taylor updates, with their feed fluctuation). Returns a dict of arrays: ``u``,
+        ``s`` [mm] (arc length: exact mode measured, Taylor modes the sum of the planned steps)
+        and ``points`` [mm] (shape (n, dimension))."""
+        np = _np()
+        u, s, points = self._c.interpolate(float(feed), float(period), str(interpolator), self.dimension,
+                                           int(max_steps))
+        return {"u": np.asarray(u), "s": np.asarray(s), "points": np.asarray(points)}
+
+    def feed_fluctuation(self, feed: float, period: float = 0.001, interpolator: str = "exact") -> dict:
+        """Seed 004's measure: steps the curve at ``feed`` [mm/min] and ``period`` [s] with the
+        ``interpolator`` and measures every cycle's arc length (Gauss-Kronrod, independent of the
+        interpolator) against F T / 60. Returns cycles, max_relative and mean_relative
+        (|arc / (F T / 60) - 1|), max_chord_error [mm] and final_gap [mm] (what `kontur spline
+        --feed` prints)."""
+        return self._c.feed_fluctuation(float(feed), float(period), str(interpolator))
+
 
 def read_curve(path: PathLike) -> NurbsCurve:
     """Reads Kontur's curve file (JSON: ``{"degree": 3, "knots": [...], "points": [[x, y, z], ...],

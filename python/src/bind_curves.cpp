@@ -7,6 +7,7 @@
 #include <kontur/geometry/length.hpp>
 #include <kontur/geometry/nurbs.hpp>
 #include <kontur/geometry/span_polynomial.hpp>
+#include <kontur/interpolate/curve_interpolator.hpp>
 #include <kontur/interpolate/forward_difference.hpp>
 #include <kontur/io/curve_json.hpp>
 #include <memory>
@@ -90,6 +91,21 @@ py::dict length_result(const LengthResult& r) {
   for (const auto& [n, l] : r.history) history.append(py::make_tuple(n, l));
   d["history"] = history;
   return d;
+}
+
+Interpolator interpolator_of(const std::string& name) {
+  if (name == "exact") return Interpolator::arc_length_exact;
+  if (name == "taylor1") return Interpolator::taylor_first_order;
+  if (name == "taylor2") return Interpolator::taylor_second_order;
+  throw InputError("interpolator-name",
+                   "interpolator = '" + name + "': expected 'exact', 'taylor1' or 'taylor2'");
+}
+
+void check_feed(double feed_mm_min, double period_s) {
+  if (!(feed_mm_min > 0.0) || !std::isfinite(feed_mm_min))
+    throw InputError("feed-positive", "feed = " + format_number(feed_mm_min) + ": expected a finite feed > 0 [mm/min]");
+  if (!(period_s > 0.0) || !std::isfinite(period_s))
+    throw InputError("period-positive", "period = " + format_number(period_s) + ": expected a finite period > 0 [s]");
 }
 
 }  // namespace
@@ -232,7 +248,56 @@ void bind_curves(py::module_& m) {
             return py::make_tuple(Buffer::of(std::move(u), {n}), Buffer::of(std::move(pts), {n, dim}),
                                   Buffer::of(std::move(span), {n}));
           },
-          py::arg("step"), py::arg("compensated"), py::arg("dim"), py::arg("max_steps"));
+          py::arg("step"), py::arg("compensated"), py::arg("dim"), py::arg("max_steps"))
+      .def(
+          "interpolate",
+          [](const PyNurbs& s, double feed_mm_min, double period_s, const std::string& kind, int dim, long max_steps) {
+            check_feed(feed_mm_min, period_s);
+            const Interpolator k = interpolator_of(kind);
+            const double ds = feed_mm_min / 60.0 * period_s;
+            CurveInterpolator ip(s.curve(), k);
+            std::vector<double> u{ip.u()}, sv{0.0}, pts;
+            const Vec3 p0 = ip.point();
+            pts.insert(pts.end(), p0.data(), p0.data() + dim);
+            {
+              py::gil_scoped_release release;
+              while (!ip.at_end()) {
+                if (static_cast<long>(u.size()) > max_steps) break;
+                ip.advance(ds);
+                u.push_back(ip.u());
+                sv.push_back(ip.s_mm());
+                const Vec3 p = ip.point();
+                pts.insert(pts.end(), p.data(), p.data() + dim);
+              }
+            }
+            if (!ip.at_end())
+              throw InputError("too-many-steps", "feed = " + format_number(feed_mm_min) + " mm/min, period = " +
+                                                     format_number(period_s) + " s: more than max_steps = " +
+                                                     std::to_string(max_steps) + " setpoints");
+            const auto n = static_cast<py::ssize_t>(u.size());
+            return py::make_tuple(Buffer::of(std::move(u), {n}), Buffer::of(std::move(sv), {n}),
+                                  Buffer::of(std::move(pts), {n, dim}));
+          },
+          py::arg("feed"), py::arg("period"), py::arg("interpolator"), py::arg("dim"), py::arg("max_steps"))
+      .def(
+          "feed_fluctuation",
+          [](const PyNurbs& s, double feed_mm_min, double period_s, const std::string& kind) {
+            check_feed(feed_mm_min, period_s);
+            const Interpolator k = interpolator_of(kind);
+            FeedFluctuation f;
+            {
+              py::gil_scoped_release release;
+              f = measure_feed_fluctuation(s.curve(), k, feed_mm_min / 60.0, period_s);
+            }
+            py::dict d;
+            d["cycles"] = f.cycles;
+            d["max_relative"] = f.max_relative;
+            d["mean_relative"] = f.mean_relative;
+            d["max_chord_error"] = f.max_chord_error_mm;
+            d["final_gap"] = f.final_gap_mm;
+            return d;
+          },
+          py::arg("feed"), py::arg("period"), py::arg("interpolator"));
 
   m.def(
       "read_curve",

@@ -185,3 +185,25 @@ def test_two_dimensional_curve_file(root):
     assert c.points.shape[1] == c.dimension
     assert c.evaluate(c.u_max).shape == (c.dimension,)
     assert math.isfinite(c.length())
+
+
+@pytest.mark.parametrize("which", [1, 2])
+def test_seed_004_feed_fluctuation(root, which):
+    c = seed_curve(root, which)
+    feed, period = 6000.0, 0.001  # 0.1 mm per cycle, as tests/test_interpolation.cpp
+    t1 = c.feed_fluctuation(feed, period, "taylor1")
+    t2 = c.feed_fluctuation(feed, period, "taylor2")
+    ex = c.feed_fluctuation(feed, period, "exact")
+    assert t1["max_relative"] > 1e-4
+    assert t2["max_relative"] < t1["max_relative"] / 10
+    assert ex["max_relative"] < 1e-9 and ex["cycles"] > 2000
+    steps = c.interpolate(feed, period)
+    arcs = np.diff(steps["s"])
+    assert np.allclose(arcs[:-1], 0.1, rtol=1e-9)
+    assert np.array_equal(steps["points"][-1], c.evaluate(c.u_max))
+    assert np.allclose(steps["points"], c.evaluate(steps["u"]))
+    with pytest.raises(kontur.InputError) as e:
+        c.interpolate(0.0)
+    assert e.value.rule == "feed-positive"
+    with pytest.raises(kontur.InputError):
+        c.feed_fluctuation(6000.0, 0.001, "taylor3")

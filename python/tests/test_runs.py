@@ -156,3 +156,34 @@ def test_bad_arguments_never_crash(root):
     with pytest.raises(kontur.InputError) as e:
         kontur.run(program, machine=m)
     assert "servo" in str(e.value).lower() or "period" in str(e.value).lower()
+
+
+def test_a_signal_stops_a_long_run(shared):
+    """Ctrl-C (SIGINT) reaches Python within a run: the run stops and the handler's exception
+    propagates (KeyboardInterrupt by default; here a test's own, so that a late signal cannot stop
+    pytest itself)."""
+    import signal
+    import threading
+    import time
+
+    class Stopped(Exception):
+        pass
+
+    def handler(signum, frame):
+        raise Stopped()
+
+    m = kontur.Machine.load(shared / "data" / "gcode" / "linuxcnc-tp" / "configs" / "XYZ.ini")
+    m.servo_period_s = 1e-4  # 1.1 million setpoints: seconds of work
+    returned = False
+    old = signal.signal(signal.SIGINT, handler)
+    try:
+        timer = threading.Timer(0.2, os.kill, (os.getpid(), signal.SIGINT))
+        timer.start()
+        with pytest.raises(Stopped):
+            kontur.run(shared / "data" / "gcode" / "3D_Chips.ngc", machine=m)
+            returned = True
+            time.sleep(10)  # (the signal would come here)
+        timer.join()
+    finally:
+        signal.signal(signal.SIGINT, old)
+    assert not returned
