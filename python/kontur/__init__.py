@@ -414,6 +414,14 @@ def _point(p, what: str):
 # ----------------------------------------------------------------------------------- machines and programs
 
 
+def _field(name: str, doc: str, convert=float) -> property:
+    """A property of Machine that reads and writes the compiled machine's field ``name`` (read-only
+    when ``convert`` is None)."""
+    if convert is None:
+        return property(lambda self: getattr(self._c, name), doc=doc)
+    return property(lambda self: getattr(self._c, name), lambda self, v: setattr(self._c, name, convert(v)), doc=doc)
+
+
 class Machine:
     """A machine: per-axis velocity [mm/s], acceleration [mm/s^2], jerk [mm/s^3] limits and soft
     limits [mm] (A B C in [deg]), path feed limits, chord and path tolerances [mm], servo period
@@ -438,35 +446,17 @@ class Machine:
         """An independent copy."""
         return Machine(_core.Machine(self._c))
 
-    name = property(lambda s: s._c.name, lambda s, v: setattr(s._c, "name", v), doc="A name for reports.")
-    source = property(lambda s: s._c.source, doc="Where it was read from (a path, or 'embedded default').")
-    servo_period_s = property(
-        lambda s: s._c.servo_period_s, lambda s, v: setattr(s._c, "servo_period_s", float(v)), doc="Servo period [s]."
-    )
-    max_feed_mm_s = property(
-        lambda s: s._c.max_feed_mm_s,
-        lambda s, v: setattr(s._c, "max_feed_mm_s", float(v)),
-        doc="Largest programmed path feed honoured [mm/s].",
-    )
-    rapid_feed_mm_s = property(
-        lambda s: s._c.rapid_feed_mm_s,
-        lambda s, v: setattr(s._c, "rapid_feed_mm_s", float(v)),
-        doc="Path speed of G0 moves [mm/s].",
-    )
-    chord_tolerance_mm = property(
-        lambda s: s._c.chord_tolerance_mm,
-        lambda s, v: setattr(s._c, "chord_tolerance_mm", float(v)),
-        doc="Largest bow height of a servo cycle's chord [mm].",
-    )
-    path_tolerance_mm = property(
-        lambda s: s._c.path_tolerance_mm,
-        lambda s, v: setattr(s._c, "path_tolerance_mm", float(v)),
-        doc="G64 tolerance when the program gives none [mm].",
-    )
-    dialect = property(
-        lambda s: s._c.dialect,
-        lambda s, v: setattr(s._c, "dialect", v),
-        doc="The control's G-code dialect (linuxcnc, fanuc, haas, mitsubishi, sinumerik, grbl, mach3), or None.",
+    name = _field("name", "A name for reports.", str)
+    source = _field("source", "Where it was read from (a path, or 'embedded default').", None)
+    servo_period_s = _field("servo_period_s", "Servo period [s].")
+    max_feed_mm_s = _field("max_feed_mm_s", "Largest programmed path feed honoured [mm/s].")
+    rapid_feed_mm_s = _field("rapid_feed_mm_s", "Path speed of G0 moves [mm/s].")
+    chord_tolerance_mm = _field("chord_tolerance_mm", "Largest bow height of a servo cycle's chord [mm].")
+    path_tolerance_mm = _field("path_tolerance_mm", "G64 tolerance when the program gives none [mm].")
+    dialect = _field(
+        "dialect",
+        "The control's G-code dialect (linuxcnc, fanuc, haas, mitsubishi, sinumerik, grbl, mach3), or None.",
+        lambda v: None if v is None else str(v),
     )
 
     @property

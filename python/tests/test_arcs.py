@@ -142,3 +142,13 @@ def test_conic_rules():
     with pytest.raises(kontur.InputError) as e:
         kontur.conic_through_points([(0, 0, 0), (1, 1, 0), (2, 0, 0)])
     assert e.value.rule == "points-count"
+
+
+def test_arc_evaluate_follows_the_steps_and_refuses_outside():
+    c = kontur.circle_through_points([110, 100, 50], [100, 110, 50], [90, 100, 50])
+    s = c.steps(steps=8, time=1.0)
+    assert np.allclose(c.evaluate(s.u), s.points, atol=1e-12)
+    assert c.evaluate(0.5).shape == (3,)
+    with pytest.raises(kontur.InputError) as e:
+        c.evaluate(1.5)
+    assert e.value.rule == "parameter-range"
