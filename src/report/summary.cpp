@@ -1,8 +1,15 @@
 #include <kontur/report/summary.hpp>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace kontur::report {
+namespace {
+// Stands for the per-move array while the rest of the summary is written (no key or value of the
+// summary can contain it).
+constexpr const char* blocks_placeholder = "\x01kontur-summary-blocks\x01";
+}  // namespace
 
 std::string summary_json(const std::string& program, const Machine& machine, const verify::Report& r,
                          const std::vector<program::Move>& moves, double total_time_s, const SummaryExtras& extras) {
@@ -33,9 +40,21 @@ std::string summary_json(const std::string& program, const Machine& machine, con
   j["smoothing_tolerance_mm"] = r.smoothing_tolerance_mm;
   j["passed"] = r.passed(machine);
   j["failures"] = r.failures(machine);
-  // Per move (docs/setpoints.md): the setpoints the checker matched to it and their maxima.
-  auto blocks = nlohmann::ordered_json::array();
-  for (std::size_t i = 0; i < r.blocks.size() && i < moves.size(); ++i) {
+  // Per move (docs/setpoints.md), written entry by entry into the text below: a tree of every
+  // move's entry would cost more than the rest of a long job's memory.
+  j["blocks"] = blocks_placeholder;
+  if (extras.time_optimal_s) {
+    j["time_optimal_s"] = *extras.time_optimal_s;
+    // No motion: both times are 0, the ratio 1 (never NaN in the output).
+    j["time_ratio"] = *extras.time_optimal_s > 0.0 ? total_time_s / *extras.time_optimal_s : 1.0;
+  }
+  if (extras.setpoint_file) j["setpoint_file"] = *extras.setpoint_file;
+  std::string text = j.dump(2) + "\n";
+  const std::string marker = nlohmann::ordered_json(blocks_placeholder).dump();
+  const std::size_t at = text.find(marker);
+  std::string blocks = "[";
+  const std::size_t n = std::min(r.blocks.size(), moves.size());
+  for (std::size_t i = 0; i < n; ++i) {
     const verify::BlockStats& b = r.blocks[i];
     nlohmann::ordered_json e;
     e["line"] = b.source_line;
@@ -55,16 +74,17 @@ std::string summary_json(const std::string& program, const Machine& machine, con
     e["max_jerk_ratio"] = b.max_jerk_ratio;
     e["max_path_error_mm"] = b.max_path_error_mm;
     e["max_chord_error_mm"] = b.max_chord_error_mm;
-    blocks.push_back(std::move(e));
+    // As dump(2) writes an object two levels down: every line indented by 4 more spaces.
+    const std::string entry = e.dump(2);
+    blocks += i == 0 ? "\n    " : ",\n    ";
+    for (char c : entry) {
+      blocks += c;
+      if (c == '\n') blocks += "    ";
+    }
   }
-  j["blocks"] = std::move(blocks);
-  if (extras.time_optimal_s) {
-    j["time_optimal_s"] = *extras.time_optimal_s;
-    // No motion: both times are 0, the ratio 1 (never NaN in the output).
-    j["time_ratio"] = *extras.time_optimal_s > 0.0 ? total_time_s / *extras.time_optimal_s : 1.0;
-  }
-  if (extras.setpoint_file) j["setpoint_file"] = *extras.setpoint_file;
-  return j.dump(2) + "\n";
+  blocks += n > 0 ? "\n  ]" : "]";
+  text.replace(at, marker.size(), blocks);
+  return text;
 }
 
 }  // namespace kontur::report
