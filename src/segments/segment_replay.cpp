@@ -59,12 +59,10 @@ SegmentStats replay_segments(std::istream& in, const std::string& name,
   kll_setpoint sp;
   trajectory::Setpoint out;
   out.position = AxisVector::Zero(head.layout.size());
-  double t = 0.0;
   for (;;) {
     const int r = kll_next(&s, &sp);
     if (r == KLL_SETPOINT) {
-      if (sp.cycle > 0) t += head.period_s;  // as the sampler adds its period
-      out.t_s = t;
+      out.t_s = static_cast<double>(sp.cycle) * head.period_s;  // as the sampler: k T, computed
       for (int i = 0; i < head.layout.size(); ++i) out.position[i] = sp.position[static_cast<std::size_t>(i)];
       out.v_mm_s = sp.speed_mm_s;
       out.source_line = sp.line;

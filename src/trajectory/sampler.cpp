@@ -76,8 +76,8 @@ bool Sampler::next(Setpoint& out) noexcept {
       if (!tr.closed()) return false;  // wait for the planner
       // The last segment: its end at rest is the last setpoint.
       const Segment& m = tr.segment(current_);
-      t_ += period_;
-      emit(out, t_, m.curve->point(m.u1), m.extra_at(m.s1_mm), 0.0,
+      ++cycle_;
+      emit(out, static_cast<double>(cycle_) * period_, m.curve->point(m.u1), m.extra_at(m.s1_mm), 0.0,
            m.hold_after_s > 0.0 ? m.hold_after_line : m.source_line, m.move);
       end_given_ = true;
       return true;
@@ -121,8 +121,8 @@ bool Sampler::next(Setpoint& out) noexcept {
   }
   s_ = std::max(s_, s_target);
   t_move_ = t_move;
-  t_ += period_;
-  emit(out, t_, m.curve->point(u_), m.extra_at(st.s >= m.s1_mm - m.s0_mm ? m.s1_mm : s_), st.v, line, move);
+  ++cycle_;
+  emit(out, static_cast<double>(cycle_) * period_, m.curve->point(u_), m.extra_at(st.s >= m.s1_mm - m.s0_mm ? m.s1_mm : s_), st.v, line, move);
   if (derivatives_) emit_derivatives(out, m, u_, st);
   return true;
 }

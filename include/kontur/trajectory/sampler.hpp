@@ -1,5 +1,5 @@
 #pragma once
-// Setpoints at the servo period from the trajectory's segments: each cycle advances the time,
+// Setpoints at the servo period from the trajectory's segments: setpoint k at time k T (computed, not summed),
 // samples the current segment's profile for the distance along its piece and maps it to a point by
 // the exact arc length (ArcLengthTable::u_after). The per-cycle path: noexcept, allocation-free,
 // bounded, and it never frees (it only marks the segments it has passed; the planner frees them).
@@ -57,7 +57,7 @@ class Sampler {
   std::size_t current_ = 0;  // index of the current segment
   bool started_ = false;
   bool end_given_ = false;
-  double t_ = 0.0;            // time of the last setpoint [s]
+  long cycle_ = 0;  // number of the last setpoint: its time is cycle_ * period_ [s], computed, not summed
   double t_move_ = 0.0;       // time into the current segment [s]
   double u_ = 0.0, s_ = 0.0;  // parameter and distance on the curve of the last setpoint
 };
