@@ -3,12 +3,23 @@
 // samples the current segment's profile for the distance along its piece and maps it to a point by
 // the exact arc length (ArcLengthTable::u_after). The per-cycle path: noexcept, allocation-free,
 // bounded, and it never frees (it only marks the segments it has passed; the planner frees them).
+#include <cmath>
 #include <cstddef>
 #include <kontur/axes.hpp>
 #include <kontur/program/move.hpp>
 #include <kontur/trajectory/trajectory.hpp>
 
 namespace kontur::trajectory {
+
+/// The time of servo cycle k [s]: k T computed, never summed. For a period that is a whole number of
+/// nanoseconds (every real servo period) it is (k * T [ns]) / 1e9, the double nearest to the exact
+/// decimal time (cycle 5270 at 1 ms is 5.27 s, not 5.2700000000000005); otherwise k * T.
+[[nodiscard]] inline double cycle_time_s(long k, double period_s) noexcept {
+  const double ns = std::round(period_s * 1e9);
+  const double kns = static_cast<double>(k) * ns;
+  if (ns >= 1.0 && std::abs(ns * 1e-9 - period_s) <= 1e-12 * period_s && kns < 9.0e15) return kns / 1e9;
+  return static_cast<double>(k) * period_s;
+}
 
 /// One setpoint of the servo loop.
 struct Setpoint {
