@@ -1,5 +1,6 @@
 // The `kontur` command: one subcommand per job, the library does the work.
 #include "commands.hpp"
+#include "interrupt.hpp"
 #include "report_output.hpp"
 
 #include <kontur/error.hpp>
@@ -14,7 +15,7 @@ int main(int argc, char** argv) {
   using namespace kontur::app;
   CLI::App app{"kontur: motion interpolation for CNC machines and robots.\n"
                "Exit codes: 0 success, 1 invalid input (file, curve, value), 2 wrong command line, "
-               "3 internal error, 4 (run) setpoints outside the limits.",
+               "3 internal error, 4 (run) setpoints outside the limits, 130 / 143 stopped by SIGINT / SIGTERM.",
                "kontur"};
   app.set_version_flag("--version", std::string("kontur ") + kontur::version_string);
   app.require_subcommand(1);
@@ -48,6 +49,9 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return exit_usage;
+  } catch (const Interrupted& e) {
+    std::fprintf(stderr, "kontur: %s\n", interrupted_message(e).c_str());
+    return e.exit_code();
   } catch (const kontur::InputError& e) {
     std::fprintf(stderr, "kontur: error: %s\n", e.what());
     return exit_invalid_input;

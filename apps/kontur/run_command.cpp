@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "interrupt.hpp"
 #include "program_options.hpp"
 #include "report_output.hpp"
 #include "run_report.hpp"
@@ -33,13 +34,14 @@ namespace {
 struct RunOptions {
   std::string program;
   std::string machine;
-  std::string output = "-";
+  std::string output;  // none: no setpoints written
   std::string format = "csv";
   double segment_tolerance_mm = tolerances::segment_tolerance_mm;
   std::string summary;
   bool time_optimal = false;
   std::string report;
   bool quiet = false;
+  bool json = false;
   bool no_blend = false;
   bool no_smooth = false;
   ProgramReadOptions read;
@@ -95,22 +97,29 @@ long count_lines(const std::string& path) {
 }
 
 bool run_program(const RunOptions& o) {
+  // Where each output goes; the standard output carries at most one of them.
+  const bool json_stdout = o.json || o.summary == "-";
+  const bool setpoints = !o.output.empty();
   // The report path is checked before any work: not an input, not the setpoint file.
   std::vector<std::filesystem::path> inputs = {o.program};
   if (!o.machine.empty()) inputs.emplace_back(o.machine);
   if (!o.report.empty()) {
     if (o.report == "-" && o.output == "-")
-      throw CLI::ValidationError("--report",
-                                 "--report - needs -o FILE: the setpoints already go to the standard output");
+      throw CLI::ValidationError("--report", "--report - needs -o FILE or no -o: the setpoints already go to the standard output");
     if (o.report != "-") {
       check_output_not_input(o.report, inputs);
-      if (o.output != "-") check_output_not_input(o.report, {o.output});
+      if (setpoints && o.output != "-") check_output_not_input(o.report, {o.output});
     }
   }
-  if (o.summary == "-" && (o.output == "-" || o.report == "-"))
-    throw CLI::ValidationError("--summary", "--summary - needs -o FILE and no --report -: stdout is taken");
+  if (json_stdout && (o.output == "-" || o.report == "-"))
+    throw CLI::ValidationError(o.json ? "--json" : "--summary",
+                               "the JSON summary on the standard output needs -o FILE (or no -o) and no --report -: "
+                               "stdout is taken");
+  if (o.format == "segments" && !setpoints)
+    throw CLI::ValidationError("--format", "--format segments needs -o FILE (or -o -): the stream is the output");
   Machine machine = o.machine.empty() ? default_machine() : read_machine(o.machine);
   if (o.machine.empty()) validate(machine);
+  InterruptGuard interrupt;
   Progress progress(!o.quiet);
   const long total_lines = progress.enabled() ? count_lines(o.program) : 0;
   const SetpointFormat format = o.format == "binary" ? SetpointFormat::binary : SetpointFormat::csv;
@@ -122,12 +131,22 @@ bool run_program(const RunOptions& o) {
   options.reader = reader_options(o.read, o.program, &machine, true);
   options.time_optimal = o.time_optimal;
   options.derivatives = segments;  // the stream fits the exact velocity and acceleration
+  std::optional<gcode::DialectChoice> dialect;
+  if (options.reader.dialect) dialect = gcode::DialectChoice{*options.reader.dialect, options.reader.dialect_reason};
   Pipeline pipeline(std::move(machine), options);
   std::unique_ptr<RunReportBuilder> builder;
   if (!o.report.empty()) builder = std::make_unique<RunReportBuilder>(pipeline.machine(), pipeline.moves(), pipeline.layout());
   RunResult result;
   const AxisLayout layout = pipeline.prepare(o.program);
   segments::SegmentStats stream;
+  PipelineEvents events;
+  if (builder) events.observer = [&](const verify::SampleMeasure& m) { builder->observe(m); };
+  events.progress = [&](long line) {
+    InterruptGuard::check();
+    if (total_lines > 0)
+      progress.update("running", static_cast<double>(line) / static_cast<double>(total_lines),
+                      fmt::format("line {} of {}", line, total_lines));
+  };
   auto produce = [&](std::ostream& out) {
     std::optional<SetpointWriter> writer;
     std::optional<segments::SegmentWriter> stream_writer;
@@ -139,37 +158,46 @@ bool run_program(const RunOptions& o) {
     } else {
       writer.emplace(out, format, pipeline.machine().servo_period_s, layout);
     }
-    PipelineEvents events;
     events.setpoint = [&](const trajectory::Setpoint& sp) {
+      InterruptGuard::check();
       if (writer) {
         writer->write(sp);
       } else {
         stream_writer->write(sp);
       }
     };
-    if (builder) events.observer = [&](const verify::SampleMeasure& m) { builder->observe(m); };
-    if (total_lines > 0)
-      events.progress = [&](long line) {
-        progress.update("running", static_cast<double>(line) / static_cast<double>(total_lines),
-                        fmt::format("line {} of {}", line, total_lines));
-      };
     result = pipeline.run(o.program, events);
     if (stream_writer) {
       stream_writer->finish();
       stream = stream_writer->stats();
     }
+    InterruptGuard::check();  // (a signal during the last blocks: the file is not renamed into place)
   };
-  if (o.output == "-") {
-    produce(std::cout);
-  } else {
-    write_file_atomically(o.output, produce, inputs);
-  }
-  progress.clear();
-  if (builder) {
-    const report::Report rep = builder->build(result.check, result.total_time_s, o.program);
-    std::vector<std::filesystem::path> report_inputs = inputs;
-    if (o.output != "-") report_inputs.emplace_back(o.output);
-    report::write_html_report(rep, o.report, report_inputs, RunReportBuilder::render_options());
+  // The files this run writes, for the message of an interrupted run.
+  std::vector<std::string> outputs;
+  for (const std::string& f : {o.output, o.report, o.summary})
+    if (!f.empty() && f != "-") outputs.push_back(f);
+  try {
+    if (!setpoints) {
+      events.setpoint = [&](const trajectory::Setpoint&) { InterruptGuard::check(); };
+      result = pipeline.run(o.program, events);
+    } else if (o.output == "-") {
+      produce(std::cout);
+    } else {
+      write_file_atomically(o.output, produce, inputs);
+    }
+    progress.clear();
+    InterruptGuard::check();
+    if (builder) {
+      const report::Report rep = builder->build(result.check, result.total_time_s, o.program);
+      std::vector<std::filesystem::path> report_inputs = inputs;
+      if (setpoints && o.output != "-") report_inputs.emplace_back(o.output);
+      report::write_html_report(rep, o.report, report_inputs, RunReportBuilder::render_options());
+    }
+  } catch (Interrupted& e) {
+    progress.clear();
+    e.not_written = outputs;
+    throw;
   }
   if (segments && !result.summary_json.empty()) {
     // What the stream holds, beside the check of the planner's setpoints it was fitted to.
@@ -192,7 +220,24 @@ bool run_program(const RunOptions& o) {
         {"max_speed_error_mm_s", stream.max_speed_error_mm_s}};
     result.summary_json = summary.dump(2) + "\n";
   }
-  write_summary(result.summary_json, o.summary, o.quiet, inputs);
+  if (!o.summary.empty() && o.summary != "-") write_summary(result.summary_json, o.summary, true, inputs);
+  if (json_stdout) std::cout << result.summary_json << std::flush;
+  if (!o.quiet) {
+    // For a person: on stdout, unless the setpoints or the JSON are there.
+    std::string footer;
+    if (!setpoints) {
+      footer = "setpoints not written: -o FILE writes them (CSV; --format binary, segments), -o - to stdout";
+      if (!json_stdout) footer += "; --json prints this summary as JSON";
+    } else if (o.output != "-") {
+      footer = fmt::format("setpoints {} ({})", o.output, o.format);
+    }
+    if (!o.summary.empty() && o.summary != "-") footer += fmt::format("{}summary   {}", footer.empty() ? "" : "\n", o.summary);
+    if (!o.report.empty() && o.report != "-")
+      footer += fmt::format("{}report    {} (open it in a browser)", footer.empty() ? "" : "\n", o.report);
+    const bool stdout_taken = o.output == "-" || o.report == "-" || json_stdout;
+    print_human_summary(stdout_taken ? stderr : stdout, o.program, pipeline.machine(), dialect, result,
+                        pipeline.moves(), footer);
+  }
   return result.passed;
 }
 
@@ -205,7 +250,8 @@ void register_run_command(CLI::App& app, int& exit_code) {
                                      "setpoints at its servo period, with an independent check of the limits.");
   cmd->add_option("PROGRAM", o->program, "part program (G-code)")->required();
   cmd->add_option("--machine", o->machine, "machine file: Kontur TOML, or LinuxCNC INI (default: embedded)");
-  cmd->add_option("-o,--output", o->output, "setpoint file, '-' for stdout")->capture_default_str();
+  cmd->add_option("-o,--output", o->output,
+                  "setpoint file, '-' for stdout (none: no setpoints are written, only the summary is printed)");
   cmd->add_option("--format", o->format,
                   "csv or binary setpoints (docs/setpoints.md), or segments: the stream of polynomial pieces the "
                   "lower level replays (docs/segments.md, kontur replay)")
@@ -217,28 +263,33 @@ void register_run_command(CLI::App& app, int& exit_code) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--summary", o->summary,
-                  "JSON summary file, per program and per block (default: stderr, none with --quiet); - for stdout "
-                  "(with -o FILE)");
+                  "JSON summary file, per program and per block (docs/setpoints.md); - for stdout (as --json)");
+  cmd->add_flag("--json", o->json, "print the JSON summary on stdout instead of the short one (not with -o -)");
   cmd->add_option("--report", o->report,
                   "write a self-contained HTML report (path coloured by speed, speed against feed, axis velocity, "
                   "acceleration and jerk with their limits, chord error, per-block table; docs/report.md) to FILE, "
-                  "atomically; - for stdout only with -o FILE")
+                  "atomically; - for stdout (not with -o -)")
       ->type_name("FILE");
   cmd->add_flag("--time-optimal", o->time_optimal,
                 "add the time-optimal reference (acceleration-limited) and the ratio of the total time to it");
-  cmd->add_flag("--quiet", o->quiet, "no progress bar and no summary on stderr (errors are still printed)");
+  cmd->add_flag("--quiet", o->quiet, "no progress bar and no short summary (errors are still printed)");
   cmd->add_flag("--no-blend", o->no_blend,
                 "do not blend corners between lines within the G64 tolerance (each corner is a junction)");
   cmd->add_flag("--no-smooth", o->no_smooth,
                 "do not smooth runs of dense lines within the G64 tolerance (each line runs as programmed)");
   add_program_read_options(cmd, o->read);
   cmd->footer(
-      "Example:\n  kontur run examples/programs/square_arc.ngc -o square_arc.csv --summary square_arc.json "
+      "Example:\n  kontur run examples/programs/square_arc.ngc   (the short summary: time, limits, PASS/FAIL)\n"
+      "  kontur run examples/programs/square_arc.ngc -o square_arc.csv --summary square_arc.json "
       "--report square_arc.html\n"
       "  kontur run examples/programs/square_arc.ngc -o - --quiet | head   (setpoints to stdout)\n"
-      "A progress bar is drawn on stderr when it is a terminal and the run takes longer than a second.\n"
-      "Exit codes: 0 setpoints written and within the limits, 1 invalid program or machine, 2 wrong command "
-      "line, 4 setpoints written but the check found a limit exceeded (see the summary).");
+      "  kontur run examples/programs/square_arc.ngc --json   (the JSON summary on stdout)\n"
+      "Without -o no setpoints are written. The short summary goes to stdout, or to stderr when stdout carries "
+      "the setpoints or the JSON; PASS and FAIL are coloured on a terminal unless NO_COLOR is set. A progress bar "
+      "is drawn on stderr when it is a terminal and the run takes longer than a second.\n"
+      "Exit codes: 0 within the limits, 1 invalid program or machine, 2 wrong command line, 4 the check found a "
+      "limit exceeded (see the summary), 130 / 143 stopped by SIGINT / SIGTERM (nothing written, earlier files "
+      "as they were).");
   cmd->callback([o, &exit_code]() { exit_code = run_program(*o) ? exit_ok : exit_check_failed; });
 }
 

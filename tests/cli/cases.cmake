@@ -153,12 +153,22 @@ if(KONTUR_BUILD_REPORT)
                   examples/programs/square_arc.ngc -o ${report_dir}/run2.csv --report examples/programs/square_arc.ngc)
   kontur_cli_case(run_report_refuses_the_setpoint_file 1 "run3\\.csv: is an input" run
                   examples/programs/square_arc.ngc -o ${report_dir}/run3.csv --report ${report_dir}/run3.csv)
-  kontur_cli_case(run_report_stdout_needs_a_setpoint_file 2 "--report - needs -o FILE" run
-                  examples/programs/square_arc.ngc --report -)
+  kontur_cli_case(run_report_stdout_not_with_setpoints_on_stdout 2 "--report - needs -o FILE or no -o" run
+                  examples/programs/square_arc.ngc -o - --report -)
 endif()
 
 # kontur run (issue 5, in progress): the bundled example passes the independent check.
-kontur_cli_case(run_example 0 "\"passed\": true" run examples/programs/square_arc.ngc -o -)
+kontur_cli_case(run_example 0 "t,x,y,z,v,block.*PASS +every limit held" run examples/programs/square_arc.ngc -o -)
+# Without -o (issue 19): no setpoints, the short summary on stdout and how to write them; --json the JSON.
+kontur_cli_case(run_without_output_prints_the_short_summary 0
+                "time +5\\.270 s, 5271 setpoints.*PASS +every limit held.*setpoints not written: -o FILE" run
+                examples/programs/square_arc.ngc)
+kontur_cli_case(run_json_prints_the_summary 0 "\"total_time_s\": 5\\.27,.*\"passed\": true" run
+                examples/programs/square_arc.ngc --json --quiet)
+kontur_cli_case(run_json_not_with_setpoints_on_stdout 2 "stdout is taken" run examples/programs/square_arc.ngc
+                -o - --json)
+kontur_cli_case(run_segments_need_an_output 2 "--format segments needs -o FILE" run examples/programs/square_arc.ngc
+                --format segments)
 # Four axes (issue 14): the rotary example in inverse time writes an A column and passes; a program
 # that moves A on a machine without it is refused, naming the axis, the line and the machine.
 kontur_cli_case(run_rotary_g93 0 "\"max_extra_axis_error\": [0-9.e-]+,[^}]*\"passed\": true" run
@@ -170,13 +180,13 @@ kontur_cli_case(run_axis_the_machine_lacks 1
                 "rotary_g93\\.ngc:8: the block moves A \\(to 30\\), but the machine .* has no A axis \\(its axes: X Y Z\\)" run
                 examples/programs/rotary_g93.ngc -o /tmp/kontur_cli_rotary_refused.csv)
 # --time-optimal: the reference time and the ratio (>= 1: the reference is a lower bound).
-kontur_cli_case(run_time_optimal 0 "\"time_optimal_s\": [0-9.]+,[^}]*\"time_ratio\": 1\\.[0-9]+" run examples/programs/square_arc.ngc --time-optimal -o /tmp/kontur_cli_run_time_optimal.csv)
+kontur_cli_case(run_time_optimal 0 "\"time_optimal_s\": [0-9.]+,[^}]*\"time_ratio\": 1\\.[0-9]+" run examples/programs/square_arc.ngc --time-optimal -o /tmp/kontur_cli_run_time_optimal.csv --json)
 kontur_cli_case(run_bad_program 1 "knot_count\\.ngc:[0-9]+:[0-9]+: G0?6\\.2: [0-9]+ knots given" run tests/data/gcode/bad/knot_count.ngc -o /tmp/kontur_cli_run_bad.csv)
 kontur_cli_case(run_refuses_to_overwrite_its_program 1 "square_arc\\.ngc" run examples/programs/square_arc.ngc -o examples/programs/square_arc.ngc)
 kontur_cli_case(run_help 0 "Example:.*--report" run --help)
 kontur_cli_case(machine_help 0 "Example" machine --help)
 kontur_cli_case(run_summary_has_blocks 0 "\"blocks\": \\[.*\"line\": 3,.*\"type\": \"rapid\".*\"max_jerk_ratio\"" run
-                examples/programs/square_arc.ngc -o /tmp/kontur_cli_run_blocks.csv)
+                examples/programs/square_arc.ngc -o /tmp/kontur_cli_run_blocks.csv --summary -)
 # --quiet: nothing on stderr on success (no summary, no progress bar); the setpoints still go to stdout.
 add_test(NAME cli_run_quiet_prints_nothing_to_stderr
          COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:kontur_app>;run;examples/programs/square_arc.ngc;-o;-;--quiet"
@@ -197,8 +207,8 @@ kontur_cli_case(verify_bad_row 1 "bad_row\\.csv:3: column 3 of \"0\\.001000000,0
 kontur_cli_case(verify_missing_setpoints 1 "no-such\\.csv: cannot open the setpoint file" verify
                 tests/data/setpoints/short_line.ngc tests/data/setpoints/no-such.csv)
 # Setpoints and summary cannot both go to stdout: refused before any work.
-kontur_cli_case(run_summary_stdout_needs_output_file 2 "--summary - needs -o FILE" run examples/programs/square_arc.ngc
-                --summary -)
+kontur_cli_case(run_summary_stdout_not_with_setpoints_on_stdout 2 "stdout is taken" run
+                examples/programs/square_arc.ngc -o - --summary -)
 
 # the tool table (docs/gcode.md, "Tool table and compensation")
 kontur_cli_case(check_tool_table 0 "rapid +25\\.000000 mm" check tests/data/gcode/good/tool_length.ngc
