@@ -10,7 +10,7 @@ if [ $# -gt 0 ]; then
   targets=()
   for t in "$@"; do
     # (kontur_python exists only where cmake found a Python for it; its warning said why not)
-    if [ "$t" = kontur_python ] && ! cmake --build build --target help 2>/dev/null | grep -q kontur_python; then
+    if [ "$t" = kontur_python ] && [[ "$(cmake --build build --target help 2>/dev/null)" != *kontur_python* ]]; then
       continue
     fi
     targets+=(--target "$t")

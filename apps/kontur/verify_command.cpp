@@ -12,6 +12,7 @@
 #include <kontur/machine.hpp>
 #include <kontur/pipeline.hpp>
 #include <memory>
+#include <optional>
 
 #include "commands.hpp"
 #include "program_options.hpp"
@@ -28,6 +29,7 @@ struct VerifyOptions {
   std::string summary;
   std::string report;
   bool quiet = false;
+  bool json = false;
   bool no_blend = false;
   bool no_smooth = false;
   ProgramReadOptions read;
@@ -54,7 +56,18 @@ bool verify_setpoints(const VerifyOptions& o) {
     const report::Report rep = builder->build(result.check, result.total_time_s, o.program);
     report::write_html_report(rep, o.report, inputs, RunReportBuilder::render_options());
   }
-  write_summary(result.summary_json, o.summary, o.quiet, inputs);
+  const bool json_stdout = o.json || o.summary == "-";
+  if (!o.summary.empty() && o.summary != "-") write_summary(result.summary_json, o.summary, true, inputs);
+  if (json_stdout) std::cout << result.summary_json << std::flush;
+  if (!o.quiet) {
+    std::optional<gcode::DialectChoice> dialect;
+    if (options.reader.dialect) dialect = gcode::DialectChoice{*options.reader.dialect, options.reader.dialect_reason};
+    std::string footer = fmt::format("checked   {}", o.setpoints);
+    if (!o.summary.empty() && o.summary != "-") footer += fmt::format("\nsummary   {}", o.summary);
+    if (!o.report.empty()) footer += fmt::format("\nreport    {} (open it in a browser)", o.report);
+    print_human_summary(json_stdout ? stderr : stdout, o.program, pipeline.machine(), dialect, result,
+                        pipeline.moves(), footer);
+  }
   return result.passed;
 }
 
@@ -74,17 +87,19 @@ void register_verify_command(CLI::App& app, int& exit_code) {
       ->required();
   cmd->add_option("--machine", o->machine, "machine file: Kontur TOML, or LinuxCNC INI (default: embedded)");
   cmd->add_option("--summary", o->summary,
-                  "JSON summary file, per program and per block (default: stderr); - for stdout");
+                  "JSON summary file, per program and per block (docs/setpoints.md); - for stdout (as --json)");
+  cmd->add_flag("--json", o->json, "print the JSON summary on stdout instead of the short one");
   cmd->add_option("--report", o->report, "write the HTML report of the setpoints to FILE (docs/report.md)")
       ->type_name("FILE");
-  cmd->add_flag("--quiet", o->quiet, "no summary on stderr (errors are still printed)");
+  cmd->add_flag("--quiet", o->quiet, "no short summary (errors are still printed)");
   cmd->add_flag("--no-blend", o->no_blend, "the path without corner blends (setpoints of kontur run --no-blend)");
   cmd->add_flag("--no-smooth", o->no_smooth,
                 "the path with dense lines as programmed (setpoints of kontur run --no-smooth)");
   add_program_read_options(cmd, o->read);
   cmd->footer(
       "Example:\n  kontur run examples/programs/square_arc.ngc -o square_arc.csv --quiet\n"
-      "  kontur verify examples/programs/square_arc.ngc square_arc.csv --summary -\n"
+      "  kontur verify examples/programs/square_arc.ngc square_arc.csv   (the short summary: limits, PASS/FAIL)\n"
+      "  kontur verify examples/programs/square_arc.ngc square_arc.csv --json   (the JSON summary on stdout)\n"
       "Exit codes: 0 within every limit, 1 invalid program, machine or setpoint file, 2 wrong command line, "
       "4 a limit exceeded or the path left (see \"failures\" in the summary).");
   cmd->callback([o, &exit_code]() { exit_code = verify_setpoints(*o) ? exit_ok : exit_check_failed; });

@@ -198,6 +198,8 @@ add_test(NAME cli_run_quiet_prints_nothing_to_stderr
 kontur_cli_case(verify_help 0 "Example" verify --help)
 kontur_cli_case(verify_setpoints_within_limits 0 "\"passed\": true" verify tests/data/setpoints/short_line.ngc
                 tests/data/setpoints/short_line.csv --summary -)
+kontur_cli_case(verify_prints_the_short_summary 0 "checked +tests/data/setpoints/short_line\\.csv" verify
+                tests/data/setpoints/short_line.ngc tests/data/setpoints/short_line.csv)
 kontur_cli_case(verify_bumped_setpoint_fails 4 "jerk of axis Y at [0-9.]+ times its limit.*0\\.00894 mm off the path" verify
                 tests/data/setpoints/short_line.ngc tests/data/setpoints/short_line_bumped.csv)
 kontur_cli_case(verify_bad_header 1 "bad_header\\.csv:1: the header is \"time,x,y,z\"" verify
