@@ -15,7 +15,7 @@ scripts/install-python.sh
 py="$(sed -n 's/^Python_EXECUTABLE:[A-Z]*=//p' build/CMakeCache.txt)"
 if [ -n "$py" ]; then
   echo "== $py -c 'import kontur; print(kontur.run(\"examples/programs/square_arc.ngc\"))'"
-  (cd build && "$py" -c 'import kontur; print(kontur.run("../examples/programs/square_arc.ngc"))')
+  "$py" -c 'import kontur; print(kontur.run("examples/programs/square_arc.ngc"))'
 fi
 echo
 echo "== kontur spline examples/curves/seed_example1.json --step 0.05 --report build/seed_example1.html"
