@@ -11,19 +11,20 @@ build="${1:-build}"; shift || true
 kontur="$build/bin/kontur"
 work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT
 chips=../shared/data/gcode/3D_Chips.ngc
-printf '| program | servo period | setpoints | moves | output | peak memory [MB] | wall time [s] |\n|---|---|---|---|---|---|---|\n'
+printf '| program | servo period | setpoints | moves | output | peak memory [MB] | wall time [s] | exit |\n|---|---|---|---|---|---|---|---|\n'
 measure() {  # program period output
   local program="$1" period="$2" output="$3" args=()
   printf 'servo_period_s = %s\n' "$period" > "$work/machine.toml"
   [ "$output" = binary ] && args=(-o "$work/setpoints.bin" --format binary)
+  local rc=0
   /usr/bin/time -f '%M %e' -o "$work/time" "$kontur" run "$program" --machine "$work/machine.toml" "${args[@]}" \
-      --summary "$work/summary.json" --quiet || true
-  read -r kb seconds < "$work/time"
+      --summary "$work/summary.json" --quiet || rc=$?
+  read -r kb seconds < <(tail -n 1 "$work/time")  # (GNU time puts a line on a non-zero exit first)
   local n moves
   n=$(sed -n 's/^  "setpoints": \([0-9]*\),/\1/p' "$work/summary.json")
   moves=$(sed -n 's/^  "moves": \([0-9]*\),/\1/p' "$work/summary.json")
-  printf '| %s | %s s | %s | %s | %s | %s | %s |\n' "$(basename "$program")" "$period" "$n" "$moves" "$output" \
-      "$(awk -v kb="$kb" 'BEGIN { printf "%.1f", kb / 1024 }')" "$seconds"
+  printf '| %s | %s s | %s | %s | %s | %s | %s | %s |\n' "$(basename "$program")" "$period" "$n" "$moves" "$output" \
+      "$(awk -v kb="$kb" 'BEGIN { printf "%.1f", kb / 1024 }')" "$seconds" "$rc"
   rm -f "$work/setpoints.bin"
 }
 for period in 0.001 0.0001 0.00001; do
