@@ -270,5 +270,22 @@ TEST(ArcLengthTable, StepsOfTheServoCycle) {
   }
 }
 
+// Issue 20, hang 1: a rational degree-1 curve whose second span repeats its control point (|C'| = 0
+// on the whole span, the integrand rounding noise) bisected towards 2^40 panels. The work per
+// piece is bounded now, and the length is the first span's.
+TEST(LengthGaussKronrod, DegenerateRationalSpanAMicrometreLongEnds) {
+  NurbsData d;
+  d.degree = 1;
+  d.knots = {0.0, 0.0, 0.5, 1.0, 1.0};
+  d.points = {Vec3(0, 0, 0), Vec3(0.001, 0, 0), Vec3(0.001, 0, 0)};
+  d.weights = {1.0, 2.0, 3.0};
+  const NurbsCurve curve(d);
+  const LengthResult r = gauss_kronrod_length(curve);
+  EXPECT_NEAR(r.length_mm, 0.001, 1e-15);
+  EXPECT_LE(r.evaluations, 2 * tolerances::gauss_kronrod_max_piece_evaluations + 1000);
+  const ArcLengthTable table(curve);
+  EXPECT_NEAR(table.length_mm(), 0.001, 1e-15);
+}
+
 }  // namespace
 }  // namespace kontur

@@ -2,7 +2,8 @@
 // Clean stops of long jobs: SIGINT (Ctrl-C) and SIGTERM only set a flag; the job checks it where
 // it hands out work (each setpoint, each block) and unwinds with Interrupted, so that every output
 // still being written is removed (io/atomic_file.hpp) and earlier files stay as they were. main()
-// prints one line saying what was not written and exits 128 + the signal (130, 143).
+// prints one line saying what was not written and exits 128 + the signal (130, 143). A job that
+// does not reach a check within 3 s of the signal, or gets a second one, ends at once (_exit).
 #include <stdexcept>
 #include <string>
 #include <vector>

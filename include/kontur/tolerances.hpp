@@ -35,6 +35,11 @@ inline constexpr double simpson_relative = 1e-10;
 inline constexpr int simpson_max_halvings = 24;
 /// Deepest bisection of an adaptive Gauss-Kronrod interval.
 inline constexpr int gauss_kronrod_max_depth = 40;
+/// Most evaluations of |C'| spent on one piece between breakpoints (the depth alone allows 2^40
+/// panels where the integrand is noise everywhere, e.g. a degenerate rational span a micrometre
+/// long): past it the remaining panels are accepted as they are, not converged. Cusps and spikes
+/// of the shared programs take at most a few tens of thousands.
+inline constexpr long gauss_kronrod_max_piece_evaluations = 2'000'000;
 /// Relative accuracy of the inverse u(s) of the arc-length table.
 inline constexpr double inverse_length_relative = 1e-13;
 /// Largest number of Newton iterations of u(s); each falls back to bisection when it leaves the

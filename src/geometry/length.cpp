@@ -131,13 +131,14 @@ double patterson_fixed(const Curve& curve, double a, double b, int level) noexce
 // ever more panels, since |C'| there is mostly rounding noise).
 template <class Accept>
 void adaptive(const Curve& curve, double a, double b, const GkResult& r, double rel_tol, double abs_density,
-              int depth, long& evaluations, Accept&& accept) {
+              int depth, long& evaluations, long evaluation_limit, Accept&& accept) {
   const double mid = 0.5 * (a + b);
   // A panel only a few hundred ulps of u wide cannot be resolved further: the nodes' positions
   // are quantised, so the value there is as good as double precision allows.
   const bool small = !(mid > a && mid < b) || (b - a) <= 256.0 * kEps * std::max(std::abs(a), std::abs(b));
   const bool within_budget = r.error <= abs_density * (b - a);
-  if (r.ok || within_budget || depth >= tolerances::gauss_kronrod_max_depth || small) {
+  if (r.ok || within_budget || depth >= tolerances::gauss_kronrod_max_depth || small ||
+      evaluations >= evaluation_limit) {
     GkResult accepted = r;
     accepted.ok = r.ok || within_budget;
     accept(a, b, accepted);
@@ -160,8 +161,8 @@ void adaptive(const Curve& curve, double a, double b, const GkResult& r, double 
     accept(mid, b, right);
     return;
   }
-  adaptive(curve, a, mid, left, rel_tol, abs_density, depth + 1, evaluations, accept);
-  adaptive(curve, mid, b, right, rel_tol, abs_density, depth + 1, evaluations, accept);
+  adaptive(curve, a, mid, left, rel_tol, abs_density, depth + 1, evaluations, evaluation_limit, accept);
+  adaptive(curve, mid, b, right, rel_tol, abs_density, depth + 1, evaluations, evaluation_limit, accept);
 }
 
 // The adaptive integration of one piece between breakpoints.
@@ -169,7 +170,8 @@ template <class Accept>
 void integrate_piece(const Curve& curve, double a, double b, double rel_tol, long& evaluations, Accept&& accept) {
   const GkResult root = patterson_panel(curve, a, b, rel_tol, evaluations);
   const double abs_density = rel_tol * std::abs(root.value) / (b - a);
-  adaptive(curve, a, b, root, rel_tol, abs_density, 0, evaluations, accept);
+  adaptive(curve, a, b, root, rel_tol, abs_density, 0, evaluations,
+           evaluations + tolerances::gauss_kronrod_max_piece_evaluations, accept);
 }
 
 // Splits [u0, u1] at the curve's breakpoints and calls f(a, b) on each piece.

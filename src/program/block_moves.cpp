@@ -70,7 +70,8 @@ Move move_of(const gcode::Block& b, const Machine& machine) {
                            b.extra_start[5] == b.extra_end[5];
   if (rotary_only && b.type != gcode::BlockType::rapid && b.modal.units == gcode::Units::inch) feed /= 25.4;
   if (b.feed.mode == gcode::FeedMode::inverse_time && b.type != gcode::BlockType::rapid)
-    feed = b.feed.duration_s() > 0.0 ? len / b.feed.duration_s() : machine.max_feed_mm_s;
+    // (a block of no length takes no time, as LinuxCNC drops it: any feed > 0 serves; issue 20, 15)
+    feed = b.feed.duration_s() > 0.0 && len > 0.0 ? len / b.feed.duration_s() : machine.max_feed_mm_s;
   if (!(feed > 0.0))
     throw InputError("feed-missing",
                      fmt::format("{}:{}: a feed move with no feed: program an F word before it",

@@ -253,3 +253,10 @@ kontur_cli_case(compress_unknown_curve 2 "unknown curve 'ellipses'" compress exa
                 -o /tmp/kontur_cli_compress_curve.ngc --curves arcs,ellipses)
 kontur_cli_case(compress_bad_program 1 "knot_count\\.ngc:[0-9]+:[0-9]+: G0?6\\.2: [0-9]+ knots given" compress
                 tests/data/gcode/bad/knot_count.ngc -o /tmp/kontur_cli_compress_bad.ngc)
+
+# Unkind but valid input (issue 20): a zero-length G93 block with its own F runs; a rational G6.2 whose
+# second span repeats its control point is read and run in bounded time.
+kontur_cli_case(run_inverse_time_zero_length_block 0 "PASS" run tests/data/gcode/good/inverse_time_zero_length.ngc)
+kontur_cli_case(check_degenerate_rational_span 0 "valid, 8 lines" check tests/data/gcode/good/degenerate_rational_span.ngc
+                --quiet)
+kontur_cli_case(run_degenerate_rational_span 0 "PASS" run tests/data/gcode/good/degenerate_rational_span.ngc)
