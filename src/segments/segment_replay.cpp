@@ -59,10 +59,11 @@ SegmentStats replay_segments(std::istream& in, const std::string& name,
   kll_setpoint sp;
   trajectory::Setpoint out;
   out.position = AxisVector::Zero(head.layout.size());
+  const trajectory::ServoClock clock(head.period_s);
   for (;;) {
     const int r = kll_next(&s, &sp);
     if (r == KLL_SETPOINT) {
-      out.t_s = trajectory::cycle_time_s(static_cast<long>(sp.cycle), head.period_s);  // as the sampler
+      out.t_s = clock.time_s(static_cast<long>(sp.cycle));  // as the sampler
       for (int i = 0; i < head.layout.size(); ++i) out.position[i] = sp.position[static_cast<std::size_t>(i)];
       out.v_mm_s = sp.speed_mm_s;
       out.source_line = sp.line;

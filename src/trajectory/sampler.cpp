@@ -69,7 +69,7 @@ bool Sampler::next(Setpoint& out) noexcept {
     }
     return true;
   }
-  double t_move = t_move_ + period_;
+  double t_move = t_move_ + clock_.period_s();
   // Move on to the following segments while this cycle lies beyond the current one.
   while (current_ < tr.end_index() && t_move >= tr.segment(current_).duration()) {
     if (current_ + 1 >= tr.end_index()) {
@@ -77,7 +77,7 @@ bool Sampler::next(Setpoint& out) noexcept {
       // The last segment: its end at rest is the last setpoint.
       const Segment& m = tr.segment(current_);
       ++cycle_;
-      emit(out, cycle_time_s(cycle_, period_), m.curve->point(m.u1), m.extra_at(m.s1_mm), 0.0,
+      emit(out, clock_.time_s(cycle_), m.curve->point(m.u1), m.extra_at(m.s1_mm), 0.0,
            m.hold_after_s > 0.0 ? m.hold_after_line : m.source_line, m.move);
       end_given_ = true;
       return true;
@@ -122,7 +122,7 @@ bool Sampler::next(Setpoint& out) noexcept {
   s_ = std::max(s_, s_target);
   t_move_ = t_move;
   ++cycle_;
-  emit(out, cycle_time_s(cycle_, period_), m.curve->point(u_), m.extra_at(st.s >= m.s1_mm - m.s0_mm ? m.s1_mm : s_), st.v, line, move);
+  emit(out, clock_.time_s(cycle_), m.curve->point(u_), m.extra_at(st.s >= m.s1_mm - m.s0_mm ? m.s1_mm : s_), st.v, line, move);
   if (derivatives_) emit_derivatives(out, m, u_, st);
   return true;
 }

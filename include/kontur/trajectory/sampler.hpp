@@ -11,15 +11,28 @@
 
 namespace kontur::trajectory {
 
-/// The time of servo cycle k [s]: k T computed, never summed. For a period that is a whole number of
-/// nanoseconds (every real servo period) it is (k * T [ns]) / 1e9, the double nearest to the exact
-/// decimal time (cycle 5270 at 1 ms is 5.27 s, not 5.2700000000000005); otherwise k * T.
-[[nodiscard]] inline double cycle_time_s(long k, double period_s) noexcept {
-  const double ns = std::round(period_s * 1e9);
-  const double kns = static_cast<double>(k) * ns;
-  if (ns >= 1.0 && std::abs(ns * 1e-9 - period_s) <= 1e-12 * period_s && kns < 9.0e15) return kns / 1e9;
-  return static_cast<double>(k) * period_s;
-}
+/// The times of the servo cycles: cycle k at k T [s], computed, never summed. For a period that
+/// is a whole number of nanoseconds (every real servo period) it is (k * T [ns]) / 1e9, the double
+/// nearest to the exact decimal time (cycle 5270 at 1 ms is 5.27 s, not 5.2700000000000005);
+/// otherwise k * T. The period's nanoseconds are found once, at construction.
+class ServoClock {
+ public:
+  explicit ServoClock(double period_s) noexcept : period_(period_s) {
+    const double ns = std::round(period_s * 1e9);
+    if (ns >= 1.0 && std::abs(ns * 1e-9 - period_s) <= 1e-12 * period_s) ns_ = ns;
+  }
+  /// The period [s].
+  [[nodiscard]] double period_s() const noexcept { return period_; }
+  /// The time of cycle k [s].
+  [[nodiscard]] double time_s(long k) const noexcept {
+    const double kns = static_cast<double>(k) * ns_;
+    return ns_ > 0.0 && kns < 9.0e15 ? kns / 1e9 : static_cast<double>(k) * period_;
+  }
+
+ private:
+  double period_;     // [s]
+  double ns_ = 0.0;   // the period in whole nanoseconds, 0 when it is not one
+};
 
 /// One setpoint of the servo loop.
 struct Setpoint {
@@ -44,14 +57,14 @@ class Sampler {
   /// first and second derivatives at its point: the segment stream fits them; segments/).
   Sampler(Trajectory& trajectory, double period_s, const AxisLayout& layout = AxisLayout::xyz(),
           bool derivatives = false) noexcept
-      : trajectory_(&trajectory), period_(period_s), layout_(layout), derivatives_(derivatives) {}
+      : trajectory_(&trajectory), clock_(period_s), layout_(layout), derivatives_(derivatives) {}
   /// The next setpoint: false when the trajectory has no segment for it yet (the planner must
   /// append more), or when done(). The first setpoint is the start point at t = 0.
   bool next(Setpoint& out) noexcept;
   /// True once the last setpoint (the end of the last segment, at rest) was given.
   [[nodiscard]] bool done() const noexcept { return end_given_; }
   /// Servo period [s].
-  [[nodiscard]] double period_s() const noexcept { return period_; }
+  [[nodiscard]] double period_s() const noexcept { return clock_.period_s(); }
   /// The layout of the setpoints' positions.
   [[nodiscard]] const AxisLayout& layout() const noexcept { return layout_; }
 
@@ -62,13 +75,13 @@ class Sampler {
   void emit_derivatives(Setpoint& out, const Segment& m, double u, const PathState& st) const noexcept;
 
   Trajectory* trajectory_;
-  double period_;
+  ServoClock clock_;  // the period and the times of the cycles
   AxisLayout layout_;
   bool derivatives_ = false;
   std::size_t current_ = 0;  // index of the current segment
   bool started_ = false;
   bool end_given_ = false;
-  long cycle_ = 0;  // number of the last setpoint: its time is cycle_ * period_ [s], computed, not summed
+  long cycle_ = 0;  // number of the last setpoint: its time is clock_.time_s(cycle_)
   double t_move_ = 0.0;       // time into the current segment [s]
   double u_ = 0.0, s_ = 0.0;  // parameter and distance on the curve of the last setpoint
 };
