@@ -6,13 +6,13 @@
 #include <filesystem>
 #include <kontur/error.hpp>
 #include <kontur/gcode/tool_table.hpp>
-#include <memory>
 #include <kontur/io/setpoint_reader.hpp>
 #include <kontur/pipeline.hpp>
 #include <kontur/plan/constraints.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/plan/time_optimal.hpp>
 #include <kontur/report/summary.hpp>
+#include <memory>
 
 namespace kontur {
 namespace {

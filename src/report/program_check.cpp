@@ -4,21 +4,23 @@
 #include <kontur/axes.hpp>
 #include <kontur/report/program_check.hpp>
 #include <nlohmann/json.hpp>
+#include <functional>
 #include <optional>
 #include <string>
 
 namespace kontur::report {
 
 std::string program_check_json(const std::string& program, const gcode::ReaderOptions& options, bool with_blocks) {
-  // Validate first: a program with an error yields nothing but the error.
-  const gcode::ProgramSummary s = gcode::check_program(program, options);
+  // One pass: a program with an error throws before the document is returned, so it yields
+  // nothing but the error.
   nlohmann::ordered_json j;
   j["file"] = program;
   j["valid"] = true;
-  j["dialect"] = {{"name", gcode::to_string(s.dialect.dialect)}, {"reason", s.dialect.reason}};
+  j["dialect"] = nullptr;  // (set after the pass; its place in the document is here)
   auto& blocks = j["blocks"] = nlohmann::ordered_json::array();
+  std::function<void(const gcode::Block&, std::optional<double>)> on_block;
   if (with_blocks)
-    gcode::check_program(program, options, [&](const gcode::Block& b, std::optional<double> len) {
+    on_block = [&](const gcode::Block& b, std::optional<double> len) {
       nlohmann::ordered_json e;
       e["line"] = b.location.line;
       e["column"] = b.location.column;
@@ -43,7 +45,9 @@ std::string program_check_json(const std::string& program, const gcode::ReaderOp
         e["extra_end"] = std::move(ee);
       }
       blocks.push_back(e);
-    });
+    };
+  const gcode::ProgramSummary s = gcode::check_program(program, options, on_block);
+  j["dialect"] = {{"name", gcode::to_string(s.dialect.dialect)}, {"reason", s.dialect.reason}};
   auto& t = j["totals"];
   t["lines"] = s.lines;
   t["blocks"] = s.blocks;

@@ -49,10 +49,10 @@ std::string summary_json(const std::string& program, const Machine& machine, con
     j["time_ratio"] = *extras.time_optimal_s > 0.0 ? total_time_s / *extras.time_optimal_s : 1.0;
   }
   if (extras.setpoint_file) j["setpoint_file"] = *extras.setpoint_file;
-  std::string text = j.dump(2) + "\n";
+  const std::string head_and_tail = j.dump(2) + "\n";
   const std::string marker = nlohmann::ordered_json(blocks_placeholder).dump();
-  const std::size_t at = text.find(marker);
-  std::string blocks = "[";
+  const std::size_t at = head_and_tail.find(marker);
+  std::string text = head_and_tail.substr(0, at) + "[";
   const std::size_t n = std::min(r.blocks.size(), moves.size());
   for (std::size_t i = 0; i < n; ++i) {
     const verify::BlockStats& b = r.blocks[i];
@@ -76,14 +76,14 @@ std::string summary_json(const std::string& program, const Machine& machine, con
     e["max_chord_error_mm"] = b.max_chord_error_mm;
     // As dump(2) writes an object two levels down: every line indented by 4 more spaces.
     const std::string entry = e.dump(2);
-    blocks += i == 0 ? "\n    " : ",\n    ";
+    text += i == 0 ? "\n    " : ",\n    ";
     for (char c : entry) {
-      blocks += c;
-      if (c == '\n') blocks += "    ";
+      text += c;
+      if (c == '\n') text += "    ";
     }
   }
-  blocks += n > 0 ? "\n  ]" : "]";
-  text.replace(at, marker.size(), blocks);
+  text += n > 0 ? "\n  ]" : "]";
+  text.append(head_and_tail, at + marker.size());
   return text;
 }
 

@@ -9,8 +9,8 @@ namespace kontur::report {
 
 /// Reads and validates `program` with `options` and returns the JSON text (indented by 2, no
 /// trailing newline): "file", "valid", "dialect" {name, reason}, "blocks" (empty when
-/// `with_blocks` is false: the program is then read once, not twice) and "totals". Throws
-/// InputError (file, line, column, rule) at the first error, before anything is built.
+/// `with_blocks` is false) and "totals", in one reading. Throws InputError (file, line, column,
+/// rule) at the first error; nothing is returned then.
 [[nodiscard]] std::string program_check_json(const std::string& program, const gcode::ReaderOptions& options,
                                              bool with_blocks = true);
 
