@@ -98,7 +98,8 @@ long count_lines(const std::string& path) {
 
 bool run_program(const RunOptions& o) {
   // Where each output goes; the standard output carries at most one of them.
-  const bool json_stdout = o.json || o.summary == "-";
+  const SummaryOutputs summaries{o.summary, o.json, o.quiet, o.output == "-" || o.report == "-"};
+  const bool json_stdout = summaries.json_on_stdout();
   const bool setpoints = !o.output.empty();
   // The report path is checked before any work: not an input, not the setpoint file.
   std::vector<std::filesystem::path> inputs = {o.program};
@@ -131,8 +132,6 @@ bool run_program(const RunOptions& o) {
   options.reader = reader_options(o.read, o.program, &machine, true);
   options.time_optimal = o.time_optimal;
   options.derivatives = segments;  // the stream fits the exact velocity and acceleration
-  std::optional<gcode::DialectChoice> dialect;
-  if (options.reader.dialect) dialect = gcode::DialectChoice{*options.reader.dialect, options.reader.dialect_reason};
   Pipeline pipeline(std::move(machine), options);
   std::unique_ptr<RunReportBuilder> builder;
   if (!o.report.empty()) builder = std::make_unique<RunReportBuilder>(pipeline.machine(), pipeline.moves(), pipeline.layout());
@@ -220,24 +219,18 @@ bool run_program(const RunOptions& o) {
         {"max_speed_error_mm_s", stream.max_speed_error_mm_s}};
     result.summary_json = summary.dump(2) + "\n";
   }
-  if (!o.summary.empty() && o.summary != "-") write_summary(result.summary_json, o.summary, true, inputs);
-  if (json_stdout) std::cout << result.summary_json << std::flush;
-  if (!o.quiet) {
-    // For a person: on stdout, unless the setpoints or the JSON are there.
-    std::string footer;
-    if (!setpoints) {
-      footer = "setpoints not written: -o FILE writes them (CSV; --format binary, segments), -o - to stdout";
-      if (!json_stdout) footer += "; --json prints this summary as JSON";
-    } else if (o.output != "-") {
-      footer = fmt::format("setpoints {} ({})", o.output, o.format);
-    }
-    if (!o.summary.empty() && o.summary != "-") footer += fmt::format("{}summary   {}", footer.empty() ? "" : "\n", o.summary);
-    if (!o.report.empty() && o.report != "-")
-      footer += fmt::format("{}report    {} (open it in a browser)", footer.empty() ? "" : "\n", o.report);
-    const bool stdout_taken = o.output == "-" || o.report == "-" || json_stdout;
-    print_human_summary(stdout_taken ? stderr : stdout, o.program, pipeline.machine(), dialect, result,
-                        pipeline.moves(), footer);
+  // For a person: what was written where (write_summaries adds the summary file).
+  std::string footer;
+  if (!setpoints) {
+    footer = "setpoints not written: -o FILE writes them (CSV; --format binary, segments), -o - to stdout";
+    if (!json_stdout) footer += "; --json prints this summary as JSON";
+  } else if (o.output != "-") {
+    footer = fmt::format("setpoints {} ({})", o.output, o.format);
   }
+  if (!o.report.empty() && o.report != "-")
+    footer += fmt::format("{}report    {} (open it in a browser)", footer.empty() ? "" : "\n", o.report);
+  write_summaries(summaries, result.summary_json, inputs, o.program, pipeline.machine(), options.reader, result,
+                  pipeline.moves(), footer);
   return result.passed;
 }
 

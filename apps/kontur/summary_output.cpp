@@ -11,18 +11,6 @@
 
 namespace kontur::app {
 
-void write_summary(const std::string& text, const std::string& path, bool quiet,
-                   const std::vector<std::filesystem::path>& inputs) {
-  if (path.empty()) {
-    if (!quiet) std::cerr << text;
-  } else if (path == "-") {
-    std::cout << text;
-  } else {
-    write_file_atomically(
-        path, [&](std::ostream& out) { out << text; }, inputs);
-  }
-}
-
 namespace {
 
 // "5.270 s", or with hours and minutes for long jobs: "17334.303 s (4 h 48 min 54 s)".
@@ -47,10 +35,9 @@ bool colour_for(std::FILE* out) {
   return isatty(fileno(out)) != 0 && (no_colour == nullptr || *no_colour == '\0');
 }
 
-}  // namespace
-
+// The short summary for a person (write_summaries).
 void print_human_summary(std::FILE* out, const std::string& program, const Machine& machine,
-                         const std::optional<gcode::DialectChoice>& dialect, const RunResult& result,
+                         const gcode::ReaderOptions& reading, const RunResult& result,
                          const std::vector<program::Move>& moves, const std::string& footer) {
   const verify::Report& r = result.check;
   double feed_mm = 0.0, rapid_mm = 0.0;
@@ -66,7 +53,8 @@ void print_human_summary(std::FILE* out, const std::string& program, const Machi
   std::string letters;
   for (const AxisLimits& a : machine.axes) letters += a.name;
   fmt::print(out, "program   {}{}\n", program,
-             dialect ? fmt::format(" ({}: {})", gcode::to_string(dialect->dialect), dialect->reason) : std::string());
+             reading.dialect ? fmt::format(" ({}: {})", gcode::to_string(*reading.dialect), reading.dialect_reason)
+                             : std::string());
   fmt::print(out, "machine   {}: {}, servo period {:g} ms\n", machine.source, letters, machine.servo_period_s * 1e3);
   fmt::print(out, "moves     {} ({} rapid), path {} (feed {}, rapid {})\n", moves.size(), rapids,
              mm(feed_mm + rapid_mm), mm(feed_mm), mm(rapid_mm));
@@ -93,6 +81,21 @@ void print_human_summary(std::FILE* out, const std::string& program, const Machi
   }
   if (!footer.empty()) fmt::print(out, "{}\n", footer);
   std::fflush(out);
+}
+
+}  // namespace
+
+void write_summaries(const SummaryOutputs& to, const std::string& json, const std::vector<std::filesystem::path>& inputs,
+                     const std::string& program, const Machine& machine, const gcode::ReaderOptions& reading,
+                     const RunResult& result, const std::vector<program::Move>& moves, std::string footer) {
+  const bool json_stdout = to.json_on_stdout();
+  const bool file = !to.file.empty() && to.file != "-";
+  if (file) write_file_atomically(to.file, [&](std::ostream& out) { out << json; }, inputs);
+  if (json_stdout) std::cout << json << std::flush;
+  if (to.quiet) return;
+  if (file) footer += fmt::format("{}summary   {}", footer.empty() ? "" : "\n", to.file);
+  print_human_summary(to.stdout_taken || json_stdout ? stderr : stdout, program, machine, reading, result, moves,
+                      footer);
 }
 
 }  // namespace kontur::app

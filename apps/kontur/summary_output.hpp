@@ -3,26 +3,32 @@
 // kontur/report/summary.hpp) to a file or a stream, and the short summary for a person.
 #include <cstdio>
 #include <filesystem>
-#include <kontur/gcode/dialect.hpp>
+#include <kontur/gcode/reader.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/pipeline.hpp>
-#include <optional>
 #include <string>
 #include <vector>
 
 namespace kontur::app {
 
-/// Writes the summary text: to `path` atomically (never over one of `inputs`), to stdout for "-",
-/// or to stderr when no path is given (nothing with `quiet`).
-void write_summary(const std::string& summary, const std::string& path, bool quiet,
-                   const std::vector<std::filesystem::path>& inputs);
+/// Where the summaries of a run or a verify go.
+struct SummaryOutputs {
+  std::string file;           ///< --summary FILE: the JSON, atomically (never over an input); "-": stdout
+  bool json = false;          ///< --json: the JSON on stdout
+  bool quiet = false;         ///< --quiet: no short summary
+  bool stdout_taken = false;  ///< the setpoints or the report go to stdout
+  /// The JSON goes to stdout (--json or --summary -).
+  [[nodiscard]] bool json_on_stdout() const noexcept { return json || file == "-"; }
+};
 
-/// The short summary for a person, a few lines on `out`: program (and dialect), machine, moves and
-/// path length, machining time and setpoints, the largest ratios against the limits, path and
-/// chord error, PASS or FAIL with the failures, then `footer` (if any). PASS and FAIL are
-/// coloured only when `out` is a terminal and NO_COLOR is not set.
-void print_human_summary(std::FILE* out, const std::string& program, const Machine& machine,
-                         const std::optional<gcode::DialectChoice>& dialect, const RunResult& result,
-                         const std::vector<program::Move>& moves, const std::string& footer);
+/// The end of a run or a verify: the JSON summary `json` where `to` says, and unless quiet the
+/// short summary for a person on stdout (on stderr when stdout carries the setpoints, the report
+/// or the JSON): program and dialect (as `reading` took it), machine, moves and path length,
+/// machining time and setpoints, the largest ratios against the limits, path and chord error,
+/// PASS or FAIL with the failures, then the lines of `footer` (what was written where) and the
+/// summary file. PASS and FAIL are coloured only on a terminal when NO_COLOR is not set.
+void write_summaries(const SummaryOutputs& to, const std::string& json, const std::vector<std::filesystem::path>& inputs,
+                     const std::string& program, const Machine& machine, const gcode::ReaderOptions& reading,
+                     const RunResult& result, const std::vector<program::Move>& moves, std::string footer);
 
 }  // namespace kontur::app

@@ -12,7 +12,6 @@
 #include <kontur/machine.hpp>
 #include <kontur/pipeline.hpp>
 #include <memory>
-#include <optional>
 
 #include "commands.hpp"
 #include "program_options.hpp"
@@ -56,18 +55,10 @@ bool verify_setpoints(const VerifyOptions& o) {
     const report::Report rep = builder->build(result.check, result.total_time_s, o.program);
     report::write_html_report(rep, o.report, inputs, RunReportBuilder::render_options());
   }
-  const bool json_stdout = o.json || o.summary == "-";
-  if (!o.summary.empty() && o.summary != "-") write_summary(result.summary_json, o.summary, true, inputs);
-  if (json_stdout) std::cout << result.summary_json << std::flush;
-  if (!o.quiet) {
-    std::optional<gcode::DialectChoice> dialect;
-    if (options.reader.dialect) dialect = gcode::DialectChoice{*options.reader.dialect, options.reader.dialect_reason};
-    std::string footer = fmt::format("checked   {}", o.setpoints);
-    if (!o.summary.empty() && o.summary != "-") footer += fmt::format("\nsummary   {}", o.summary);
-    if (!o.report.empty()) footer += fmt::format("\nreport    {} (open it in a browser)", o.report);
-    print_human_summary(json_stdout ? stderr : stdout, o.program, pipeline.machine(), dialect, result,
-                        pipeline.moves(), footer);
-  }
+  std::string footer = fmt::format("checked   {}", o.setpoints);
+  if (!o.report.empty()) footer += fmt::format("\nreport    {} (open it in a browser)", o.report);
+  write_summaries({o.summary, o.json, o.quiet, false}, result.summary_json, inputs, o.program, pipeline.machine(),
+                  options.reader, result, pipeline.moves(), footer);
   return result.passed;
 }
 
