@@ -78,6 +78,17 @@ def _doubles(values, ndim: Optional[int] = None, what: str = "values"):
     return a
 
 
+def _over(values, what: str, compute):
+    """``compute`` (a compiled function of a flat float64 array) over ``values`` of any shape: the
+    result has their shape, then the shape of each value's result (a float for a number that maps
+    to one value)."""
+    np = _np()
+    a = _doubles(values, None, what)
+    out = np.asarray(compute(np.ascontiguousarray(a.reshape(-1))))
+    out = out.reshape(a.shape + out.shape[1:])
+    return float(out) if out.ndim == 0 else out
+
+
 # ----------------------------------------------------------------------------------- curves
 
 
@@ -166,11 +177,7 @@ class NurbsCurve:
         for an array of shape S, S + those shapes. Vectorised in C++ (de Boor, Piegl & Tiller A2.3),
         without the GIL.
         """
-        np = _np()
-        a = _doubles(u, None, "u")
-        flat = np.ascontiguousarray(a.reshape(-1))
-        out = np.asarray(self._c.evaluate(flat, int(derivatives), self.dimension))
-        return out.reshape(a.shape + out.shape[1:])
+        return _over(u, "u", lambda flat: self._c.evaluate(flat, int(derivatives), self.dimension))
 
     def __call__(self, u):
         """The point C(u) [mm]: ``evaluate(u)``."""
@@ -196,17 +203,11 @@ class NurbsCurve:
     def u_of_s(self, s):
         """The parameter u at arc length s [mm] from the start (s in [0, length]; a number or an
         array), from an arc-length table built on first use (relative accuracy 1e-13)."""
-        np = _np()
-        a = _doubles(s, None, "s")
-        out = np.asarray(self._c.u_of_s(np.ascontiguousarray(a.reshape(-1))))
-        return float(out[0]) if a.ndim == 0 else out.reshape(a.shape)
+        return _over(s, "s", self._c.u_of_s)
 
     def s_of_u(self, u):
         """The arc length [mm] from u_min to u (a number or an array), from the same table."""
-        np = _np()
-        a = _doubles(u, None, "u")
-        out = np.asarray(self._c.s_of_u(np.ascontiguousarray(a.reshape(-1))))
-        return float(out[0]) if a.ndim == 0 else out.reshape(a.shape)
+        return _over(u, "u", self._c.s_of_u)
 
     # -- the two levels of seed 002
     def span_polynomials(self, global_parameter: bool = False) -> list:
@@ -368,10 +369,7 @@ class Arc:
     def evaluate(self, u):
         """Points [mm] at curve parameters u (circle: u in [0, 1], angle = sweep u; conic: u is
         the focal angle swept from r1, [0, theta15]); shape (len(u), 3), or (3,) for a number."""
-        np = _np()
-        a = _doubles(u, None, "u")
-        out = np.asarray(self._c.evaluate(np.ascontiguousarray(a.reshape(-1))))
-        return out[0] if a.ndim == 0 else out.reshape(a.shape + (3,))
+        return _over(u, "u", self._c.evaluate)
 
 
 def circle_through_points(p1, p2, p3, full_circle: bool = False) -> Arc:

@@ -115,11 +115,7 @@ class PyArc {
   // Points at parameters u [the curve's parameter]: (n, 3).
   Buffer evaluate(const py::buffer& u_values) const {
     const DoubleView u(u_values, 1, "u");
-    for (py::ssize_t i = 0; i < u.rows(); ++i)
-      if (!(u(i) >= curve_->u_min() && u(i) <= curve_->u_max()))
-        throw InputError("parameter-range", "u[" + std::to_string(i) + "] = " + format_number(u(i)) +
-                                                ": outside the arc's parameter range [" + format_number(curve_->u_min()) +
-                                                ", " + format_number(curve_->u_max()) + "]");
+    check_within(u, curve_->u_min(), curve_->u_max(), "u", "the arc's parameter range");
     std::vector<double> out;
     out.reserve(static_cast<std::size_t>(u.rows()) * 3);
     for (py::ssize_t i = 0; i < u.rows(); ++i) {

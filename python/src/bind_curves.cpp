@@ -48,23 +48,12 @@ NurbsData make_data(int degree, std::vector<double> knots, const py::buffer& poi
   return d;
 }
 
-// Checks every parameter of `u` against the curve's range: a clear message, never a silent clamp.
-void check_parameters(const DoubleView& u, double u_min, double u_max, const char* what) {
-  for (py::ssize_t i = 0; i < u.rows(); ++i) {
-    const double x = u(i);
-    if (!(x >= u_min && x <= u_max))
-      throw InputError("parameter-range", std::string(what) + "[" + std::to_string(i) + "] = " + format_number(x) +
-                                              ": outside the curve's parameter range [" + format_number(u_min) +
-                                              ", " + format_number(u_max) + "]");
-  }
-}
-
 Buffer evaluate(const PyNurbs& self, const py::buffer& u_values, int order, int dim) {
   if (order < 0 || order > 3)
     throw InputError("derivatives-range", "derivatives = " + std::to_string(order) + ": expected 0, 1, 2 or 3");
   const DoubleView u(u_values, 1, "u");
   const NurbsCurve& c = self.curve();
-  check_parameters(u, c.u_min(), c.u_max(), "u");
+  check_within(u, c.u_min(), c.u_max(), "u", "the curve's parameter range");
   const py::ssize_t n = u.rows();
   const int per = (order + 1) * dim;
   std::vector<double> out(static_cast<std::size_t>(n) * static_cast<std::size_t>(per));
@@ -134,9 +123,7 @@ void bind_curves(py::module_& m) {
       .def(
           "length",
           [](const PyNurbs& s, double tolerance) {
-            if (!(tolerance > 0.0 && tolerance < 1.0))
-              throw InputError("tolerance-range",
-                               "tolerance = " + format_number(tolerance) + ": expected a relative tolerance in (0, 1)");
+            check_relative_tolerance(tolerance);
             LengthResult r;
             {
               py::gil_scoped_release release;
@@ -150,9 +137,7 @@ void bind_curves(py::module_& m) {
           [](const PyNurbs& s, const std::string& scheme, double tolerance, int max_halvings) {
             if (scheme != "whole_curve" && scheme != "per_span")
               throw InputError("scheme-name", "scheme = '" + scheme + "': expected 'whole_curve' or 'per_span'");
-            if (!(tolerance > 0.0 && tolerance < 1.0))
-              throw InputError("tolerance-range",
-                               "tolerance = " + format_number(tolerance) + ": expected a relative tolerance in (0, 1)");
+            check_relative_tolerance(tolerance);
             if (max_halvings < 1 || max_halvings > 40)
               throw InputError("halvings-range",
                                "max_halvings = " + std::to_string(max_halvings) + ": expected 1 to 40");
@@ -171,27 +156,17 @@ void bind_curves(py::module_& m) {
           [](PyNurbs& s, const py::buffer& s_values) {
             const DoubleView sv(s_values, 1, "s");
             const ArcLengthTable& t = s.table();
-            check_parameters(sv, 0.0, t.length_mm(), "s");
-            std::vector<double> out(static_cast<std::size_t>(sv.rows()));
-            {
-              py::gil_scoped_release release;
-              for (py::ssize_t i = 0; i < sv.rows(); ++i) out[static_cast<std::size_t>(i)] = t.u_of_s(sv(i));
-            }
-            return Buffer::of(std::move(out), {sv.rows()});
+            check_within(sv, 0.0, t.length_mm(), "s", "the curve's length");
+            return map_values(sv, [&](double x) { return t.u_of_s(x); });
           },
           py::arg("s"))
       .def(
           "s_of_u",
           [](PyNurbs& s, const py::buffer& u_values) {
             const DoubleView uv(u_values, 1, "u");
-            check_parameters(uv, s.curve().u_min(), s.curve().u_max(), "u");
+            check_within(uv, s.curve().u_min(), s.curve().u_max(), "u", "the curve's parameter range");
             const ArcLengthTable& t = s.table();
-            std::vector<double> out(static_cast<std::size_t>(uv.rows()));
-            {
-              py::gil_scoped_release release;
-              for (py::ssize_t i = 0; i < uv.rows(); ++i) out[static_cast<std::size_t>(i)] = t.s_of_u(uv(i));
-            }
-            return Buffer::of(std::move(out), {uv.rows()});
+            return map_values(uv, [&](double x) { return t.s_of_u(x); });
           },
           py::arg("u"))
       .def(

@@ -38,18 +38,22 @@ struct RunArgs {
   std::string tool_table;
 };
 
+// The dialect named `name` (dialect= of a run, Machine.dialect); InputError for an unknown name.
+gcode::Dialect dialect_named(const std::string& name) {
+  const auto d = gcode::parse_dialect(name);
+  if (!d)
+    throw InputError("dialect-name", "dialect = '" + name + "': not a G-code dialect (expected one of " +
+                                         gcode::dialect_names() + ")");
+  return *d;
+}
+
 ProgramReading reading_of(const RunArgs& a) {
   ProgramReading r;
   r.given_reason = "given with dialect=";
   r.block_delete = a.block_delete;
   r.subroutine_path = a.subroutine_path;
   r.tool_table = a.tool_table;
-  if (a.dialect) {
-    r.dialect = gcode::parse_dialect(*a.dialect);
-    if (!r.dialect)
-      throw InputError("dialect-name", "dialect = '" + *a.dialect + "': not a G-code dialect (expected one of " +
-                                           gcode::dialect_names() + ")");
-  }
+  if (a.dialect) r.dialect = dialect_named(*a.dialect);
   return r;
 }
 
@@ -385,11 +389,7 @@ void bind_runs(py::module_& m) {
               s.dialect.reset();
               return;
             }
-            const auto d = gcode::parse_dialect(*name);
-            if (!d)
-              throw InputError("dialect-name", "dialect = '" + *name + "': not a G-code dialect (expected one of " +
-                                                   gcode::dialect_names() + ")");
-            s.dialect = d;
+            s.dialect = dialect_named(*name);
           })
       .def_property_readonly("axes", &axes_of)
       .def("set_axis", &set_axis, py::arg("name"), py::arg("max_velocity") = py::none(),
