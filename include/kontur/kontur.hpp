@@ -21,6 +21,7 @@
 #include <kontur/geometry/nurbs.hpp>
 #include <kontur/pipeline.hpp>
 #include <kontur/plan/constraints.hpp>
+#include <kontur/plan/chain_profile.hpp>
 #include <kontur/plan/lookahead.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/plan/scurve.hpp>
@@ -32,6 +33,7 @@
 #include <kontur/geometry/span_polynomial.hpp>
 #include <kontur/tolerances.hpp>
 #include <kontur/trajectory/sampler.hpp>
+#include <kontur/trajectory/path_profile.hpp>
 #include <kontur/trajectory/scurve_profile.hpp>
 #include <kontur/trajectory/trajectory.hpp>
 #include <kontur/verify/checker.hpp>

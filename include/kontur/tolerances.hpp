@@ -216,6 +216,13 @@ inline constexpr double plan_sample_margin = 0.05;
 inline constexpr double plan_limit_safety = 1e-4;
 /// Neighbouring spans of a curve whose speed caps are within this factor are planned as one piece.
 inline constexpr double plan_piece_cap_ratio = 1.5;
+/// A chain's profile that follows its pieces' caps (plan/chain_profile.hpp): the speed may exceed
+/// a cap by this share of the chain's largest cap (rounding), a phase that ends within this
+/// distance [mm] of a junction is not held to the cap beyond it, and the greedy steps stop after
+/// this many times the steps the S-curve at the smallest cap would last (the S-curve is kept then).
+inline constexpr double chain_profile_speed_slack = 1e-12;
+inline constexpr double chain_profile_boundary_mm = 1e-9;
+inline constexpr double chain_profile_max_steps_per_flat = 4.0;
 /// Most pieces in one chain (pieces joined smoothly, planned with one S-curve): bounds the delay
 /// before the look-ahead sees them.
 inline constexpr std::size_t plan_chain_max_pieces = 256;

@@ -1,9 +1,11 @@
 #include <algorithm>
 #include <cmath>
 #include <kontur/geometry/differential.hpp>
+#include <kontur/plan/chain_profile.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/tolerances.hpp>
 #include <limits>
+#include <optional>
 
 namespace kontur::plan {
 
@@ -193,6 +195,26 @@ void MotionPlanner::add_piece(Piece piece) {
   open_.pieces.push_back(std::move(piece));
 }
 
+std::vector<CapStretch> MotionPlanner::stretches_of(const Chain& chain) {
+  std::vector<CapStretch> stretches;
+  stretches.reserve(chain.pieces.size());
+  for (const Piece& p : chain.pieces) stretches.push_back({p.length_mm, p.limits.max_velocity});
+  return stretches;
+}
+
+trajectory::PathProfile MotionPlanner::chain_profile(const Chain& chain, const ScurveProfile& planned) const {
+  if (chain.pieces.size() < 2 || !(chain.max_cap_mm_s > chain.min_cap_mm_s)) return trajectory::PathProfile(planned);
+  // Steps of at most a servo period, a quarter of the time the jerk takes to build up the
+  // acceleration, at least an eighth of a period.
+  const double ramp_s = chain.limits.max_acceleration / chain.limits.max_jerk;
+  const double step = std::clamp(0.25 * ramp_s, period_ / 8.0, period_);
+  const std::optional<trajectory::PathProfile> p = plan_chain_profile(
+      stretches_of(chain), planned.start_velocity(), planned.end_velocity(), chain.limits, step, planned.duration());
+  // The S-curve at the smallest cap always fits; the other one is taken only where it is faster.
+  if (p && p->duration() < planned.duration()) return *p;
+  return trajectory::PathProfile(planned);
+}
+
 void MotionPlanner::settle_last(double end_share) {
   if (open_.pieces.empty()) return;
   Piece& p = open_.pieces.back();
@@ -211,6 +233,7 @@ void MotionPlanner::close_chain(double end_velocity) {
     mc.limits.max_jerk = std::min(mc.limits.max_jerk, p.limits.max_jerk);
   }
   mc.max_end_velocity = std::min(mc.limits.max_velocity, end_velocity);
+  open_.limits = mc.limits;
   lookahead_.push(mc);
   pending_.push_back(std::move(open_));
   open_ = Chain{};
@@ -248,7 +271,7 @@ void MotionPlanner::release_ready() {
   while (lookahead_.ready()) {
     Chain chain = std::move(pending_.front());
     pending_.pop_front();
-    const ScurveProfile profile = lookahead_.pop();
+    const trajectory::PathProfile profile = chain_profile(chain, lookahead_.pop());
     // Each piece runs through its window of the chain's profile.
     double offset = 0.0, t0 = 0.0;
     for (std::size_t k = 0; k < chain.pieces.size(); ++k) {

@@ -9,6 +9,7 @@
 #include <kontur/geometry/curve.hpp>
 #include <kontur/geometry/length.hpp>
 #include <kontur/machine.hpp>
+#include <kontur/plan/chain_profile.hpp>
 #include <kontur/plan/lookahead.hpp>
 #include <kontur/program/move.hpp>
 #include <kontur/trajectory/trajectory.hpp>
@@ -66,9 +67,14 @@ class MotionPlanner {
   struct Chain {
     std::vector<Piece> pieces;
     double min_cap_mm_s = 0.0, max_cap_mm_s = 0.0;
+    PathLimits limits;  // what the look-ahead planned it with (set when closed)
   };
   // Adds a piece to the open chain (closing it first if the piece's cap does not fit).
   void add_piece(Piece piece);
+  // The chain's profile: the look-ahead plans it as one S-curve at its smallest cap; where its
+  // pieces' caps differ, a profile that follows them where that is faster (plan/chain_profile.hpp).
+  [[nodiscard]] trajectory::PathProfile chain_profile(const Chain& chain, const ScurveProfile& planned) const;
+  [[nodiscard]] static std::vector<CapStretch> stretches_of(const Chain& chain);
   // The open chain's last piece gets its end junction's share; its limits become final.
   void settle_last(double end_share);
   // Closes the open chain (its end speed at most `end_velocity`) and hands it to the look-ahead.

@@ -37,6 +37,10 @@ class ScurveProfile {
   /// The first time [s] at which the profile has covered `s_mm` (s(t) does not decrease):
   /// bisection, for planning (where a piece of a chain starts in its profile).
   [[nodiscard]] double time_at(double s_mm) const noexcept;
+  /// End time [s] of phase k (0..6), its jerk [mm/s^3] and the state at its end (as integrated).
+  [[nodiscard]] double phase_end_time(int k) const noexcept { return start_time_[static_cast<std::size_t>(k) + 1]; }
+  [[nodiscard]] double phase_jerk(int k) const noexcept { return jerk_[static_cast<std::size_t>(k)]; }
+  [[nodiscard]] PathState sample_phase_end(int k) const noexcept { return start_[static_cast<std::size_t>(k) + 1]; }
 
  private:
   std::array<double, 8> start_time_{};  // start of phase k, [7] = end

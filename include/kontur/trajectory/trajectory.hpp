@@ -10,7 +10,7 @@
 #include <kontur/geometry/curve.hpp>
 #include <kontur/geometry/length.hpp>
 #include <kontur/program/move.hpp>
-#include <kontur/trajectory/scurve_profile.hpp>
+#include <kontur/trajectory/path_profile.hpp>
 #include <memory>
 
 namespace kontur::trajectory {
@@ -42,7 +42,7 @@ struct Segment {
   long hold_after_line = 0;                             ///< line of that dwell
   /// s(t) [mm] of the chain of pieces this one belongs to (pieces joined smoothly share one
   /// profile, so the speed changes across their junctions); this piece runs through its window.
-  ScurveProfile profile;
+  PathProfile profile;
   double window_t0_s = 0.0;   ///< start of the piece's window in the profile's time [s]
   double window_t1_s = 0.0;   ///< end of the window [s]
   double window_s0_mm = 0.0;  ///< the profile's distance at the window's start [mm]

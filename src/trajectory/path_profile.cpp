@@ -1,0 +1,75 @@
+#include <algorithm>
+#include <kontur/trajectory/path_profile.hpp>
+
+namespace kontur::trajectory {
+
+PathProfile::PathProfile(const ScurveProfile& s) {
+  std::vector<ProfilePhase> phases;
+  // The S-curve's phases, recovered by sampling it at its phase starts (exact: the same formulas).
+  double t = 0.0;
+  PathState at = s.sample(0.0);
+  for (int k = 0; k < 7; ++k) {
+    const double t_end = s.phase_end_time(k);
+    if (t_end > t) {
+      phases.push_back({t, at, s.phase_jerk(k)});
+      t = t_end;
+      at = s.sample_phase_end(k);
+    }
+  }
+  PathState end{s.distance(), s.end_velocity(), 0.0, 0.0};
+  if (phases.empty()) phases.push_back({0.0, end, 0.0});
+  auto d = std::make_shared<Data>();
+  d->phases = std::move(phases);
+  d->duration_s = s.duration();
+  d->end = end;
+  data_ = std::move(d);
+}
+
+PathProfile::PathProfile(std::vector<ProfilePhase> phases, double duration_s, const PathState& end) {
+  auto d = std::make_shared<Data>();
+  d->phases = std::move(phases);
+  if (d->phases.empty()) d->phases.push_back({0.0, end, 0.0});
+  d->duration_s = duration_s;
+  d->end = end;
+  d->end.a = 0.0;
+  d->end.j = 0.0;
+  data_ = std::move(d);
+}
+
+double PathProfile::start_velocity() const noexcept { return data_ ? data_->phases.front().start.v : 0.0; }
+
+PathState PathProfile::sample(double t) const noexcept {
+  if (!data_) return {};
+  const Data& d = *data_;
+  if (!(t > 0.0)) return d.phases.front().start;
+  if (t >= d.duration_s) return d.end;
+  // The last phase starting at or before t.
+  const auto it = std::upper_bound(d.phases.begin(), d.phases.end(), t,
+                                   [](double x, const ProfilePhase& p) { return x < p.t0_s; });
+  const ProfilePhase& p = *(it == d.phases.begin() ? it : it - 1);
+  const double tau = t - p.t0_s, j = p.jerk;
+  PathState out;
+  out.j = j;
+  out.a = p.start.a + j * tau;
+  out.v = p.start.v + p.start.a * tau + 0.5 * j * tau * tau;
+  out.s = p.start.s + p.start.v * tau + 0.5 * p.start.a * tau * tau + j * tau * tau * tau / 6.0;
+  // Rounding must not move past the end.
+  out.s = std::min(out.s, d.end.s);
+  out.v = std::max(out.v, 0.0);
+  return out;
+}
+
+double PathProfile::time_at(double s_mm) const noexcept {
+  double lo = 0.0, hi = duration();
+  for (int i = 0; i < 200; ++i) {  // bounded; stops when the interval cannot shrink
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi)) break;
+    if (sample(mid).s < s_mm)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return hi;
+}
+
+}  // namespace kontur::trajectory

@@ -1,0 +1,113 @@
+// The profile of a chain that follows its pieces' speed caps (plan/chain_profile.hpp) and the
+// general phase profile it is sampled through (trajectory/path_profile.hpp): limits, caps, exact
+// ends and continuity over seeded random chains; never slower than the S-curve at the smallest cap.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <kontur/plan/chain_profile.hpp>
+#include <kontur/trajectory/path_profile.hpp>
+#include <random>
+#include <vector>
+
+namespace kontur::plan {
+namespace {
+
+using trajectory::PathProfile;
+
+TEST(PathProfile, SamplesAnScurveExactlyAsItself) {
+  const PathLimits l{50.0, 500.0, 10000.0};
+  const ScurveProfile s = plan_scurve(12.0, 5.0, 20.0, l);
+  const PathProfile p(s);
+  EXPECT_EQ(p.duration(), s.duration());
+  EXPECT_EQ(p.distance(), 12.0);
+  for (int k = 0; k <= 1000; ++k) {
+    const double t = s.duration() * k / 1000.0;
+    const auto a = s.sample(t), b = p.sample(t);
+    EXPECT_EQ(a.s, b.s) << t;
+    EXPECT_EQ(a.v, b.v) << t;
+    EXPECT_EQ(a.a, b.a) << t;
+  }
+  EXPECT_EQ(p.sample(p.duration()).s, 12.0);
+  EXPECT_EQ(p.sample(p.duration()).v, 20.0);
+  EXPECT_EQ(p.time_at(6.0), s.time_at(6.0));
+}
+
+// Checks a chain profile by sampling: caps of the stretch each sample lies in, limits, continuity
+// of s and v, exact end.
+void expect_valid(const PathProfile& p, const std::vector<CapStretch>& st, double v0, double v1,
+                  const PathLimits& l) {
+  std::vector<double> bounds{0.0};
+  for (const CapStretch& c : st) bounds.push_back(bounds.back() + c.length_mm);
+  EXPECT_NEAR(p.start_velocity(), v0, 1e-12);
+  EXPECT_EQ(p.end_velocity(), v1);
+  EXPECT_EQ(p.distance(), bounds.back());
+  const int n = 20000;
+  double s_prev = 0.0;
+  for (int k = 0; k <= n; ++k) {
+    const double t = p.duration() * k / n;
+    const auto x = p.sample(t);
+    ASSERT_TRUE(std::isfinite(x.s) && std::isfinite(x.v) && std::isfinite(x.a));
+    EXPECT_GE(x.s, s_prev - 1e-12);
+    s_prev = x.s;
+    EXPECT_LE(std::abs(x.a), l.max_acceleration * (1 + 1e-9));
+    EXPECT_LE(std::abs(x.j), l.max_jerk * (1 + 1e-9));
+    const auto it = std::upper_bound(bounds.begin(), bounds.end(), x.s);
+    const std::size_t i = std::min<std::size_t>(static_cast<std::size_t>(it - bounds.begin()) - 1, st.size() - 1);
+    // at a junction the lower of both caps holds within rounding
+    double cap = st[i].cap_mm_s;
+    if (i > 0 && x.s - bounds[i] < 1e-9) cap = std::max(cap, st[i - 1].cap_mm_s);
+    EXPECT_LE(x.v, cap * (1 + 1e-9)) << "t " << t << " s " << x.s;
+  }
+  const auto end = p.sample(p.duration());
+  EXPECT_EQ(end.s, bounds.back());
+  EXPECT_EQ(end.v, v1);
+  EXPECT_EQ(end.a, 0.0);
+}
+
+TEST(ChainProfile, RisesToEachPiecesOwnCapAndIsFasterThanTheSmallestCap) {
+  // Slow, fast, slow: the S-curve at the smallest cap crawls through the fast middle.
+  const std::vector<CapStretch> st{{2.0, 20.0}, {30.0, 100.0}, {2.0, 20.0}};
+  const PathLimits l{20.0, 1000.0, 50000.0};
+  const ScurveProfile flat = plan_scurve(34.0, 10.0, 10.0, l);
+  const auto p = plan_chain_profile(st, 10.0, 10.0, l, 0.001, flat.duration());
+  ASSERT_TRUE(p.has_value());
+  expect_valid(*p, st, 10.0, 10.0, l);
+  EXPECT_LT(p->duration(), 0.5 * flat.duration());
+  // It cruises at the middle cap.
+  EXPECT_NEAR(p->sample(p->time_at(17.0)).v, 100.0, 1e-6);
+}
+
+TEST(ChainProfile, SeededRandomChainsKeepEveryCapAndLimit) {
+  std::mt19937_64 rng(20261202);
+  std::uniform_real_distribution<double> len(0.01, 5.0), cap(5.0, 200.0), acc(100.0, 3000.0), jr(0.002, 0.05);
+  int planned = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const int n = 2 + static_cast<int>(rng() % 12);
+    std::vector<CapStretch> st;
+    double total = 0.0, lo = 1e300;
+    for (int k = 0; k < n; ++k) {
+      st.push_back({len(rng), cap(rng)});
+      total += st.back().length_mm;
+      lo = std::min(lo, st.back().cap_mm_s);
+    }
+    const double a = acc(rng);
+    const PathLimits l{lo, a, a / jr(rng)};
+    const double v0 = lo * std::uniform_real_distribution<double>(0.0, 1.0)(rng);
+    const double v1 = std::min(lo * std::uniform_real_distribution<double>(0.0, 1.0)(rng), reachable_velocity(v0, total, l));
+    const ScurveProfile flat = plan_scurve(total, v0, v1, l);
+    if (flat.end_velocity() != v1) continue;  // braking to v1 does not fit: not a chain the look-ahead makes
+    const auto p = plan_chain_profile(st, v0, v1, l, 0.0005, flat.duration());
+    if (!p) continue;
+    ++planned;
+    expect_valid(*p, st, v0, v1, l);
+    if (::testing::Test::HasFailure()) {
+      ADD_FAILURE() << "trial " << trial;
+      return;
+    }
+  }
+  EXPECT_GT(planned, 250);  // it gives up rarely
+}
+
+}  // namespace
+}  // namespace kontur::plan
