@@ -1,4 +1,6 @@
 #include <algorithm>
+
+#include "first_time_covering.hpp"
 #include <kontur/trajectory/path_profile.hpp>
 
 namespace kontur::trajectory {
@@ -59,17 +61,6 @@ PathState PathProfile::sample(double t) const noexcept {
   return out;
 }
 
-double PathProfile::time_at(double s_mm) const noexcept {
-  double lo = 0.0, hi = duration();
-  for (int i = 0; i < 200; ++i) {  // bounded; stops when the interval cannot shrink
-    const double mid = 0.5 * (lo + hi);
-    if (!(mid > lo && mid < hi)) break;
-    if (sample(mid).s < s_mm)
-      lo = mid;
-    else
-      hi = mid;
-  }
-  return hi;
-}
+double PathProfile::time_at(double s_mm) const noexcept { return first_time_covering(*this, s_mm); }
 
 }  // namespace kontur::trajectory

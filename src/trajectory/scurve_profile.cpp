@@ -1,4 +1,6 @@
 #include <algorithm>
+
+#include "first_time_covering.hpp"
 #include <cstddef>
 #include <kontur/trajectory/scurve_profile.hpp>
 
@@ -47,17 +49,6 @@ PathState ScurveProfile::sample(double t) const noexcept {
   return out;
 }
 
-double ScurveProfile::time_at(double s_mm) const noexcept {
-  double lo = 0.0, hi = duration();
-  for (int i = 0; i < 200; ++i) {  // bounded; stops when the interval cannot shrink
-    const double mid = 0.5 * (lo + hi);
-    if (!(mid > lo && mid < hi)) break;
-    if (sample(mid).s < s_mm)
-      lo = mid;
-    else
-      hi = mid;
-  }
-  return hi;
-}
+double ScurveProfile::time_at(double s_mm) const noexcept { return first_time_covering(*this, s_mm); }
 
 }  // namespace kontur::trajectory
