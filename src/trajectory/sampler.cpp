@@ -89,6 +89,7 @@ bool Sampler::next(Setpoint& out) noexcept {
     tr.mark_done_before(current_);
     u_ = tr.segment(current_).u0;
     s_ = tr.segment(current_).s0_mm;
+    s_error_ = 0.0;
   }
   if (current_ >= tr.end_index()) return false;
   const Segment& m = tr.segment(current_);
@@ -114,10 +115,11 @@ bool Sampler::next(Setpoint& out) noexcept {
   const double s_target = m.s0_mm + st.s;
   if (st.s >= m.s1_mm - m.s0_mm || s_target >= m.s1_mm) {
     u_ = m.u1;
+    s_error_ = 0.0;
   } else if (s_target > s_ && !m.tool_still) {
     // (u_after starts from the Taylor series of u(s) at u_; no hint needed: it falls back to the
-    // table interval's linear guess)
-    u_ = m.table->u_after(u_, s_, s_target, u_);
+    // table interval's linear guess.) The error of the step is carried into the next one.
+    u_ = m.table->u_after(u_, s_, s_target, u_, s_error_, &s_error_);
   }
   s_ = std::max(s_, s_target);
   t_move_ = t_move;

@@ -73,6 +73,14 @@ public:
   /// `u_hint` is the start where the series does not apply; otherwise it is u_of_s(s_to, u_hint).
   /// The stepping of a servo cycle. Allocation-free.
   [[nodiscard]] double u_after(double u_from, double s_from, double s_to, double u_hint) const noexcept;
+  /// The same for a stepping that carries its error: `s_from_error` [mm] is the arc length at
+  /// u_from minus s_from (what an earlier step reported), and `*s_to_error` gets the arc length
+  /// at the result minus s_to (its residual and the rounding of u; 0 where the step restarted
+  /// from the table). Kept apart from s, these small numbers keep their precision where s is
+  /// large (ulp(900000 mm) = 1.2e-10 mm), so that the rounding of u does not add up over the
+  /// millions of steps of a long move.
+  [[nodiscard]] double u_after(double u_from, double s_from, double s_to, double u_hint, double s_from_error,
+                               double* s_to_error) const noexcept;
   /// Number of table intervals.
   [[nodiscard]] std::size_t intervals() const noexcept { return u_.size() - 1; }
   /// Evaluations of |C'| spent building the table.

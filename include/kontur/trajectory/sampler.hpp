@@ -83,6 +83,7 @@ class Sampler {
   bool end_given_ = false;
   long cycle_ = 0;  // number of the last setpoint: its time is clock_.time_s(cycle_)
   double t_move_ = 0.0;       // time into the current segment [s]
+  double s_error_ = 0.0;      // arc length at u_ minus s_ [mm] (ArcLengthTable::u_after)
   double u_ = 0.0, s_ = 0.0;  // parameter and distance on the curve of the last setpoint
 };
 
