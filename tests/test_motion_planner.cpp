@@ -227,3 +227,37 @@ TEST(MotionPlanner, CollinearShortLinesRunAsFastAsOneLine) {
 
 }  // namespace
 }  // namespace kontur::plan
+
+namespace kontur::plan {
+namespace {
+
+// Issue 20, case 6 (163 of its failures): `F427 / G1 X-1 / G1 X0` on a machine whose acceleration
+// can change within one period (v 75 mm/s, a 735 mm/s^2, jerk 1e8 mm/s^3): the reversal passed
+// with a velocity step worth a tenth of the acceleration on top of the full braking, 1.078 times
+// the limit. On such a machine a corner is a stop; on an ordinary one (J T << A) it is not.
+TEST(MotionPlanner, ReversalOnAMachineWhoseAccelerationChangesWithinAPeriodKeepsTheAcceleration) {
+  Machine stiff = default_machine();
+  for (AxisLimits& a : stiff.axes) {
+    a.max_velocity = 75.0;
+    a.max_acceleration = 735.0;
+    a.max_jerk = 1e8;
+  }
+  const double feed = 427.0 / 60.0;
+  for (const Machine& m : {stiff, default_machine()}) {
+    testing::PlannerRun p(m);
+    std::vector<trajectory::Setpoint> points;
+    p.planner.push(program::move_along(std::make_shared<LineSegment>(Vec3(0, 0, 0), Vec3(-1, 0, 0)), feed, false, 3));
+    p.planner.push(program::move_along(std::make_shared<LineSegment>(Vec3(-1, 0, 0), Vec3(0, 0, 0)), feed, false, 4));
+    p.planner.finish();
+    p.drain(points);
+    double a_max = 0.0;
+    for (std::size_t k = 2; k < points.size(); ++k)
+      a_max = std::max(a_max, std::abs(points[k].position[0] - 2 * points[k - 1].position[0] + points[k - 2].position[0]) /
+                                  (m.servo_period_s * m.servo_period_s));
+    EXPECT_LE(a_max, m.axes[0].max_acceleration * (1 + 1e-6)) << "jerk " << m.axes[0].max_jerk;
+    EXPECT_EQ(points.back().position[0], 0.0);
+  }
+}
+
+}  // namespace
+}  // namespace kontur::plan

@@ -201,6 +201,10 @@ inline constexpr double plan_junction_smooth = 1e-9;
 /// period apart see it) may take in the online planner's junction limit: what the centripetal part
 /// leaves at its largest share (plan_centripetal_shares).
 inline constexpr double plan_corner_acceleration_share = 0.1;
+/// ... reduced where the moves beside the corner can build up their acceleration within a period:
+/// share = clamp(this - J T / A, 0, plan_corner_acceleration_share) per axis, so none once J T is
+/// half of A (a corner is then a stop); unchanged (0.1) up to J T = 0.4 A (LinuxCNC's XYZ.ini: 0.1).
+inline constexpr double plan_corner_step_jerk_ramp = 0.5;
 /// Fractions of an axis's acceleration the centripetal part may take on a curve; the planner takes
 /// the one that gives the shortest time for the piece (the rest is left for the path acceleration).
 inline constexpr double plan_centripetal_shares[] = {0.5, 0.7, 0.9};

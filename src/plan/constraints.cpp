@@ -246,6 +246,21 @@ PathLimits move_limits(const MoveGeometry& move, const Machine& machine, int sam
   return path_limits(g, move.length_mm, move.feed_mm_s, machine, 0.0);
 }
 
+namespace {
+
+// Share of an axis's acceleration that the velocity step of a corner (v |dt_i| / T, as setpoints a
+// period apart see it) may take: plan_corner_acceleration_share, less where the moves on both
+// sides can still be near their full acceleration within a period of the junction (they end at
+// zero acceleration, but a jerk J brings it to J T within one period T): none once J T reaches
+// plan_corner_step_jerk_ramp of A. A reversal on a machine with A = 735 mm/s^2 and J = 1e8 mm/s^3
+// took 1.078 times its acceleration (issue 20, case 6); such a corner is now a stop.
+double corner_step_share(const AxisLimits& axis, double period_s) noexcept {
+  const double ramp = axis.max_jerk * period_s / axis.max_acceleration;
+  return std::clamp(tolerances::plan_corner_step_jerk_ramp - ramp, 0.0, tolerances::plan_corner_acceleration_share);
+}
+
+}  // namespace
+
 double junction_limit(const Derivatives& end_in, const Derivatives& start_out, const Machine& machine,
                       double jerk_share) noexcept {
   const Vec3 dt = unit_tangent(start_out) - unit_tangent(end_in);
@@ -261,11 +276,10 @@ double junction_limit(const Derivatives& end_in, const Derivatives& start_out, c
     // a v^2 + b v <= c, solved without cancellation
     if (a > 0.0) v = std::min(v, 2.0 * c / (b + std::sqrt(b * b + 4.0 * a * c)));
     else if (b > 0.0) v = std::min(v, c / b);
+    // the acceleration spike of a corner, v |dt_i| / T, within its share of the axis's acceleration
+    if (b > 0.0) v = std::min(v, corner_step_share(axis, T) * axis.max_acceleration * T / std::abs(dt[i]));
   }
-  // the acceleration spike of a corner, v |dt_i| / T, within a tenth of the axis's acceleration
-  return std::min(v, corner_acceleration_cap(dt, machine, linear_axes(machine),
-                                             tolerances::plan_corner_acceleration_share,
-                                             tolerances::plan_junction_smooth));
+  return v;
 }
 
 Junction junction(const Derivatives& end_in, const Derivatives& start_out, const Machine& machine) noexcept {
@@ -292,9 +306,8 @@ Junction extra_axes_junction(const ExtraAxes& rate_in, const ExtraAxes& rate_out
     if (e < 0) continue;
     const double jump = std::abs(rate_out[static_cast<std::size_t>(e)] - rate_in[static_cast<std::size_t>(e)]);
     if (!(jump > tolerances::plan_junction_smooth)) continue;
-    // v |dr| / T^2 <= share J (the jerk of the velocity step) and v |dr| / T <= 0.1 A (its acceleration)
-    v = std::min({v, share * axis.max_jerk * T * T / jump,
-                  tolerances::plan_corner_acceleration_share * axis.max_acceleration * T / jump});
+    // v |dr| / T^2 <= share J (the jerk of the velocity step) and v |dr| / T within its share of A
+    v = std::min({v, share * axis.max_jerk * T * T / jump, corner_step_share(axis, T) * axis.max_acceleration * T / jump});
   }
   return {v, share};
 }
