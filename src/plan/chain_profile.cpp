@@ -21,13 +21,23 @@ Kin advance(const Kin& x, double j, double dt) {
           x.a + j * dt};
 }
 
-// Speed at the turning point of a step (where the acceleration passes zero), if inside it.
-bool turning_speed(const Kin& x, double j, double dt, double& v) {
-  if (j == 0.0) return false;
-  const double tau = -x.a / j;
-  if (!(tau > 0.0 && tau < dt)) return false;
-  v = x.v + x.a * tau + 0.5 * j * tau * tau;
-  return true;
+// The lowest and the highest speed [mm/s] over a step of jerk j and duration dt from x: at its
+// ends, or where the acceleration passes zero inside it.
+struct SpeedRange {
+  double lo = 0.0, hi = 0.0;
+};
+
+SpeedRange speed_range(const Kin& x, double j, double dt, const Kin& end) {
+  SpeedRange r{std::min(x.v, end.v), std::max(x.v, end.v)};
+  if (j != 0.0) {
+    const double tau = -x.a / j;
+    if (tau > 0.0 && tau < dt) {
+      const double v = x.v + x.a * tau + 0.5 * j * tau * tau;
+      r.lo = std::min(r.lo, v);
+      r.hi = std::max(r.hi, v);
+    }
+  }
+  return r;
 }
 
 // Bringing the acceleration to zero at full jerk: its duration [s], jerk, distance [mm] and the
@@ -98,8 +108,8 @@ class ChainPlanner {
     return room(x, e, caps_.size()) >= 0.0;
   }
 
-  // The profile, or an empty one if the steps ran out or the check failed.
-  [[nodiscard]] trajectory::PathProfile plan(double dt, double time_bound_s) {
+  // The profile, or none if the steps ran out or the check failed.
+  [[nodiscard]] std::optional<trajectory::PathProfile> plan(double dt, double time_bound_s) {
     const double cap_all = *std::min_element(caps_.begin(), caps_.end());
     std::vector<ProfilePhase> phases;
     Kin x{0.0, v0_, 0.0};
@@ -108,17 +118,14 @@ class ChainPlanner {
         static_cast<std::size_t>(tolerances::chain_profile_max_steps_per_flat * time_bound_s / dt) + 64;
     std::size_t steps = 0;
     for (;;) {
-      if (++steps > max_steps) return {};
+      if (++steps > max_steps) return std::nullopt;
       bool moved = false;
       for (const double want : {j_, 0.0, -j_}) {
         const double j = std::clamp(want, (-a_ - x.a) / dt, (a_ - x.a) / dt);
         const Kin y = advance(x, j, dt);
         if (!(y.s < length_) || !(y.s > x.s)) continue;
-        double v_turn = 0.0;
-        const bool turns = turning_speed(x, j, dt, v_turn);
-        const double v_hi = std::max({x.v, y.v, turns ? v_turn : 0.0});
-        const double v_lo = std::min({x.v, y.v, turns ? v_turn : x.v});
-        if (v_lo < 0.0 || v_hi > min_cap(x.s, y.s) + slack_v_ || !safe(y)) continue;
+        const SpeedRange r = speed_range(x, j, dt, y);
+        if (r.lo < 0.0 || r.hi > min_cap(x.s, y.s) + slack_v_ || !safe(y)) continue;
         phases.push_back({t, {x.s, x.v, x.a, j}, j});
         t += dt;
         x = y;
@@ -146,23 +153,16 @@ class ChainPlanner {
       const bool end = bind == caps_.size();
       const double w = end ? v1_ : std::min(caps_[bind - 1], caps_[bind]);
       const double target = bounds_[bind], dist = target - x.s;
-      if (!(dist >= 0.0) || x.v < 0.0) return {};
+      if (!(dist >= 0.0) || x.v < 0.0) return std::nullopt;
       PathLimits l{std::max({x.v, w, x.v > slack_v_ ? 0.0 : cap_all}), a_, j_};
       const ScurveProfile c = plan_scurve(dist, x.v, w, l);
-      if (!(std::abs(c.end_velocity() - w) <= slack_v_)) return {};
-      for (int k = 0; k < 7; ++k) {
-        const double t0 = k == 0 ? 0.0 : c.phase_end_time(k - 1), t1 = c.phase_end_time(k);
-        if (!(t1 > t0)) continue;
-        PathState st = c.sample(t0);
-        st.s += x.s;
-        st.j = c.phase_jerk(k);
-        phases.push_back({t + t0, st, c.phase_jerk(k)});
-      }
+      if (!(std::abs(c.end_velocity() - w) <= slack_v_)) return std::nullopt;
+      trajectory::append_phases(c, t, x.s, phases);
       t += c.duration();
       x = {target, w, 0.0};
       if (end) break;
     }
-    if (!fits(phases, t)) return {};
+    if (!fits(phases, t)) return std::nullopt;
     return trajectory::PathProfile(std::move(phases), t, {length_, v1_, 0.0, 0.0});
   }
 
@@ -175,13 +175,10 @@ class ChainPlanner {
       const double dt = (k + 1 < phases.size() ? phases[k + 1].t0_s : duration_s) - p.t0_s;
       const Kin x{p.start.s, p.start.v, p.start.a};
       const Kin y = advance(x, p.jerk, dt);
-      double v_turn = 0.0;
-      const bool turns = turning_speed(x, p.jerk, dt, v_turn);
-      const double v_hi = std::max({x.v, y.v, turns ? v_turn : 0.0});
-      const double v_lo = std::min({x.v, y.v, turns ? v_turn : x.v});
-      if (v_lo < -slack_v_ || std::abs(x.a) > a_ * (1.0 + 1e-9) || std::abs(p.jerk) > j_ * (1.0 + 1e-9)) return false;
+      const SpeedRange r = speed_range(x, p.jerk, dt, y);
+      if (r.lo < -slack_v_ || std::abs(x.a) > a_ * (1.0 + 1e-9) || std::abs(p.jerk) > j_ * (1.0 + 1e-9)) return false;
       const double lo = std::min(x.s + ds, 0.5 * (x.s + y.s)), hi = std::max(y.s - ds, 0.5 * (x.s + y.s));
-      if (v_hi > min_cap(lo, hi) + slack_v_) return false;
+      if (r.hi > min_cap(lo, hi) + slack_v_) return false;
     }
     return true;
   }
@@ -199,10 +196,7 @@ std::optional<trajectory::PathProfile> plan_chain_profile(std::span<const CapStr
                                                           double time_bound_s) {
   if (stretches.empty() || !(step_s > 0.0) || !(limits.max_acceleration > 0.0) || !(limits.max_jerk > 0.0))
     return std::nullopt;
-  ChainPlanner planner(stretches, v0, v1, limits);
-  trajectory::PathProfile p = planner.plan(step_s, time_bound_s);
-  if (!(p.duration() > 0.0)) return std::nullopt;
-  return p;
+  return ChainPlanner(stretches, v0, v1, limits).plan(step_s, time_bound_s);
 }
 
 }  // namespace kontur::plan

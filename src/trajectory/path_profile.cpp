@@ -5,26 +5,25 @@
 
 namespace kontur::trajectory {
 
-PathProfile::PathProfile(const ScurveProfile& s) {
-  std::vector<ProfilePhase> phases;
-  // The S-curve's phases, recovered by sampling it at its phase starts (exact: the same formulas).
+void append_phases(const ScurveProfile& s, double t0_s, double s0_mm, std::vector<ProfilePhase>& out) {
   double t = 0.0;
   PathState at = s.sample(0.0);
   for (int k = 0; k < 7; ++k) {
     const double t_end = s.phase_end_time(k);
     if (t_end > t) {
-      phases.push_back({t, at, s.phase_jerk(k)});
+      PathState start = at;
+      start.s += s0_mm;
+      out.push_back({t0_s + t, start, s.phase_jerk(k)});
       t = t_end;
       at = s.sample_phase_end(k);
     }
   }
-  PathState end{s.distance(), s.end_velocity(), 0.0, 0.0};
-  if (phases.empty()) phases.push_back({0.0, end, 0.0});
-  auto d = std::make_shared<Data>();
-  d->phases = std::move(phases);
-  d->duration_s = s.duration();
-  d->end = end;
-  data_ = std::move(d);
+}
+
+PathProfile::PathProfile(const ScurveProfile& s) {
+  std::vector<ProfilePhase> phases;
+  append_phases(s, 0.0, 0.0, phases);
+  *this = PathProfile(std::move(phases), s.duration(), {s.distance(), s.end_velocity(), 0.0, 0.0});
 }
 
 PathProfile::PathProfile(std::vector<ProfilePhase> phases, double duration_s, const PathState& end) {

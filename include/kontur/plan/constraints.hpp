@@ -68,8 +68,8 @@ int acceleration_rows(const Vec3& t, const Vec3& k, const LinearAxes& axes, std:
 /// Largest speed [mm/s] through a corner whose unit tangent jumps by `dt` when setpoints a servo
 /// period T apart see the jump as an acceleration v |dt_i| / T within `acceleration_share` of each
 /// axis's limit: min over the axes with |dt_i| > `ignore_below` of share A_i T / |dt_i| (infinity
-/// if none). The time-optimal reference's servo-period corner rule (share 1) and the acceleration
-/// term of the online planner's junction limit (share 0.1).
+/// if none). The time-optimal reference's servo-period corner rule (share 1; the online planner's
+/// junction limit gives each axis its own share, lower where J T approaches A: junction_limit).
 [[nodiscard]] double corner_acceleration_cap(const Vec3& dt, const Machine& machine, const LinearAxes& axes,
                                              double acceleration_share, double ignore_below) noexcept;
 

@@ -17,6 +17,10 @@ struct ProfilePhase {
   double jerk = 0.0;
 };
 
+/// Appends the phases of an S-curve that last (its states as it integrates them), shifted by
+/// t0_s [s] and s0_mm [mm]: how a PathProfile is made of an S-curve, whole or as a part.
+void append_phases(const ScurveProfile& s, double t0_s, double s0_mm, std::vector<ProfilePhase>& out);
+
 class PathProfile {
  public:
   /// An empty profile (no motion).
