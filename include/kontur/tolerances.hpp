@@ -214,6 +214,18 @@ inline constexpr double plan_centripetal_shares[] = {0.5, 0.7, 0.9};
 /// 0.2 rad lies about 1 % of the range above them; constant quantities stay exact).
 inline constexpr int plan_samples_per_span = 16;
 inline constexpr double plan_sample_margin = 0.05;
+/// A point where a curve's parametric speed |C'| is at most this share of its largest over the
+/// span is stationary (a cusp, or a degenerate end such as a repeated control point): its
+/// tangent and curvature are not sampled (they are rounding noise there), and the path stops
+/// there (issue 20, cases 1-4 and 7). The grid on which |C'| is searched for such points.
+inline constexpr double plan_stationary_speed_relative = 1e-6;
+inline constexpr int plan_stationary_search_samples = 64;
+/// A span whose speed cap is below plan_piece_cap_ratio times the cap of one of its two parts
+/// (cut at 0.382 of its parameter range) is cut there, and so on in each part (a tight turn in a
+/// span then slows only a short stretch around it, issue 20), at most this many times deep and
+/// into at most this many pieces.
+inline constexpr int plan_span_max_depth = 40;
+inline constexpr int plan_span_max_pieces = 256;
 /// The planner plans with every axis limit lowered by this share. The check differentiates the
 /// setpoints: a position noise e [mm] (the arc-length inverse is accurate to about 1e-13 of a
 /// move's length) shows as 8 e / T^3 of jerk, 1e-6 of the limit already at e = 1e-11 mm, T = 1 ms.

@@ -65,3 +65,64 @@ double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) noexcept {
 }
 
 }  // namespace kontur
+
+namespace kontur {
+
+std::vector<double> stationary_points(const Curve& curve, double relative, int samples) {
+  std::vector<double> out;
+  const std::vector<double> bp = curve.breakpoints();
+  samples = std::max(samples, 2);
+  // |C'|^2 [mm^2 per parameter unit^2] on each span's grid; at a span's right end its own
+  // polynomial (the next span may differ there)
+  const auto speed2 = [&](double u, bool left) {
+    return (left ? curve.derivatives_left(u, 1) : curve.derivatives(u, 1))[1].squaredNorm();
+  };
+  const std::size_t n = static_cast<std::size_t>(samples) + 1;
+  std::vector<double> us(n * (bp.size() - 1)), f(us.size());
+  for (std::size_t s = 0; s + 1 < bp.size(); ++s)
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t i = s * n + k;
+      us[i] = k + 1 == n ? bp[s + 1] : bp[s] + (bp[s + 1] - bp[s]) * static_cast<double>(k) / samples;
+      f[i] = speed2(us[i], k + 1 == n);
+    }
+  const double peak = us.empty() ? 0.0 : *std::max_element(f.begin(), f.end());
+  if (!(peak > 0.0)) return out;  // a point: no tangent anywhere
+  const double limit = relative * relative * peak;
+  const auto add = [&](double u) {
+    if (out.empty() || u > out.back()) out.push_back(u);
+  };
+  for (std::size_t s = 0; s + 1 < bp.size(); ++s) {
+    const double* fs = &f[s * n];
+    const double* ut = &us[s * n];
+    if (fs[0] <= limit) add(ut[0]);
+    for (std::size_t k = 1; k + 1 < n; ++k) {
+      if (!(fs[k] <= fs[k - 1] && fs[k] < fs[k + 1])) continue;
+      // golden section for the minimum of |C'|^2 in [u_{k-1}, u_{k+1}]
+      constexpr double g = 0.6180339887498949;
+      double a = ut[k - 1], b = ut[k + 1];
+      double x1 = b - g * (b - a), x2 = a + g * (b - a);
+      double f1 = speed2(x1, false), f2 = speed2(x2, false);
+      for (int it = 0; it < 100; ++it) {
+        if (f1 <= f2) {
+          b = x2;
+          x2 = x1;
+          f2 = f1;
+          x1 = b - g * (b - a);
+          f1 = speed2(x1, false);
+        } else {
+          a = x1;
+          x1 = x2;
+          f1 = f2;
+          x2 = a + g * (b - a);
+          f2 = speed2(x2, false);
+        }
+        if (!(a < x1 && x1 < x2 && x2 < b)) break;  // the bracket is down to rounding
+      }
+      if (std::min(f1, f2) <= limit) add(f1 <= f2 ? x1 : x2);
+    }
+    if (fs[n - 1] <= limit) add(ut[n - 1]);
+  }
+  return out;
+}
+
+}  // namespace kontur

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <vector>
 
 namespace kontur::plan {
 namespace {
@@ -112,10 +113,18 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples) {
     lo.max_kappa = kInf;
     double max_turn = 0.0;
     Vec3 t_before = Vec3::Zero();
+    // The span's own polynomial at its right end (the next span may differ there).
+    std::vector<Derivatives> ds(static_cast<std::size_t>(samples) + 1);
+    double peak_speed = 0.0;  // largest |C'| of the samples [mm per parameter unit]
     for (int k = 0; k <= samples; ++k) {
       const double u = k == samples ? u1 : u0 + (u1 - u0) * k / samples;
-      // The span's own polynomial at its right end (the next span may differ there).
-      const Derivatives d = k == samples ? c.derivatives_left(u, 3) : c.derivatives(u, 3);
+      ds[static_cast<std::size_t>(k)] = k == samples ? c.derivatives_left(u, 3) : c.derivatives(u, 3);
+      peak_speed = std::max(peak_speed, ds[static_cast<std::size_t>(k)][1].norm());
+    }
+    for (const Derivatives& d : ds) {
+      // At a stationary point (C' = 0 up to rounding) the tangent and curvature are noise; the
+      // path stops there (split_move), and the samples beside it bound the stretch.
+      if (!(d[1].norm() > tolerances::plan_stationary_speed_relative * peak_speed)) continue;
       const Vec3 t = unit_tangent(d);
       if (t.isZero()) continue;
       if (!t_before.isZero()) max_turn = std::max(max_turn, (t - t_before).norm());

@@ -9,35 +9,97 @@
 
 namespace kontur::plan {
 
+namespace {
+
+// A stretch of a span with its geometry and speed cap [mm/s].
+struct CapSpan {
+  double u0 = 0.0, u1 = 0.0;
+  PathGeometry geometry;
+  double cap = 0.0;
+};
+
+double span_cap(const PathGeometry& g, double feed_mm_s, const Machine& machine) {
+  return speed_cap(g, feed_mm_s, machine, tolerances::plan_centripetal_shares[0]);
+}
+
+// Appends [u0, u1] to `out`, cut in two while one part's cap is over plan_piece_cap_ratio times the
+// whole's (a tight turn in a span then slows only a short stretch around it). Only a cap set by
+// the curvature is looked at: the feed and the axis velocities do not change much within a span.
+void add_stretches(const Curve& c, double u0, double u1, const PathGeometry& g, double cap, double feed_mm_s,
+                const Machine& machine, int depth, std::vector<CapSpan>& out, int& budget) {
+  PathGeometry straight = g;
+  straight.curvature = straight.curvature_rate = Vec3::Zero();
+  straight.max_kappa = 0.0;
+  const bool bent = cap < span_cap(straight, feed_mm_s, machine);
+  // (not at the middle: a symmetric curve has its tight turn there, and both halves would hold it)
+  const double um = u0 + 0.3819660112501051 * (u1 - u0);
+  if (bent && depth < tolerances::plan_span_max_depth && budget > 1 && um > u0 && um < u1) {
+    const PathGeometry ga = path_geometry(c, u0, um), gb = path_geometry(c, um, u1);
+    const double ca = span_cap(ga, feed_mm_s, machine), cb = span_cap(gb, feed_mm_s, machine);
+    if (std::max(ca, cb) > tolerances::plan_piece_cap_ratio * cap) {
+      --budget;  // one more piece
+      add_stretches(c, u0, um, ga, ca, feed_mm_s, machine, depth + 1, out, budget);
+      add_stretches(c, um, u1, gb, cb, feed_mm_s, machine, depth + 1, out, budget);
+      return;
+    }
+  }
+  out.push_back({u0, u1, g, cap});
+}
+
+}  // namespace
+
 std::vector<MovePiece> split_move(const Curve& c, const ArcLengthTable& table, double feed_mm_s,
                                   const Machine& machine) {
   const std::vector<double> bp = c.breakpoints();
-  const std::size_t spans = bp.size() - 1;
-  std::vector<MovePiece> pieces;
-  double lo = 0.0, hi = 0.0;  // range of the span caps [mm/s] in the current piece
-  for (std::size_t k = 0; k < spans; ++k) {
-    const PathGeometry g = path_geometry(c, bp[k], bp[k + 1]);
-    const double cap = speed_cap(g, feed_mm_s, machine, tolerances::plan_centripetal_shares[0]);
-    if (k > 0) {
-      const Junction j = junction(c.derivatives_left(bp[k], 2), c.derivatives(bp[k], 2), machine);
-      const double new_lo = std::min(lo, cap), new_hi = std::max(hi, cap);
-      if (j.smooth() && !(new_hi > tolerances::plan_piece_cap_ratio * new_lo)) {
-        pieces.back().u1 = bp[k + 1];
-        pieces.back().geometry.merge(g);
-        lo = new_lo;
-        hi = new_hi;
-        continue;
-      }
-      pieces.back().end = j;
-    }
-    MovePiece p;
-    p.u0 = bp[k];
-    p.u1 = bp[k + 1];
-    p.geometry = g;
-    p.end = {std::numeric_limits<double>::infinity(), 0.0};
-    pieces.push_back(p);
-    lo = hi = cap;
+  // Where the pieces may end: the breakpoints and the stationary points (C' = 0: the path stops).
+  struct Cut {
+    double u = 0.0;
+    bool breakpoint = false, stationary = false;
+  };
+  std::vector<Cut> cuts;
+  for (double u : bp) cuts.push_back({u, true, false});
+  for (double u : stationary_points(c, tolerances::plan_stationary_speed_relative,
+                                    tolerances::plan_stationary_search_samples)) {
+    const auto at = std::lower_bound(cuts.begin(), cuts.end(), u, [](const Cut& a, double b) { return a.u < b; });
+    if (at != cuts.end() && at->u == u) at->stationary = true;
+    else cuts.insert(at, {u, false, true});
   }
+  std::vector<MovePiece> pieces;
+  double lo = 0.0, hi = 0.0;  // range of the stretch caps [mm/s] in the current piece
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    const Cut& at = cuts[k];
+    std::vector<CapSpan> stretches;
+    int budget = tolerances::plan_span_max_pieces;
+    const PathGeometry g = path_geometry(c, at.u, cuts[k + 1].u);
+    add_stretches(c, at.u, cuts[k + 1].u, g, span_cap(g, feed_mm_s, machine), feed_mm_s, machine, 0, stretches, budget);
+    for (std::size_t i = 0; i < stretches.size(); ++i) {
+      const CapSpan& st = stretches[i];
+      if (!pieces.empty()) {
+        // inside a span where it was cut: smooth; at a stationary point: a stop
+        Junction j{std::numeric_limits<double>::infinity(), 0.0};
+        if (i == 0 && at.stationary) j = {0.0, tolerances::plan_corner_jerk_share};
+        else if (i == 0 && at.breakpoint) j = junction(c.derivatives_left(at.u, 2), c.derivatives(at.u, 2), machine);
+        const double new_lo = std::min(lo, st.cap), new_hi = std::max(hi, st.cap);
+        if (j.smooth() && !(new_hi > tolerances::plan_piece_cap_ratio * new_lo)) {
+          pieces.back().u1 = st.u1;
+          pieces.back().geometry.merge(st.geometry);
+          lo = new_lo;
+          hi = new_hi;
+          continue;
+        }
+        pieces.back().end = j;
+      }
+      MovePiece p;
+      p.u0 = st.u0;
+      p.u1 = st.u1;
+      p.geometry = st.geometry;
+      p.end = {std::numeric_limits<double>::infinity(), 0.0};
+      pieces.push_back(p);
+      lo = hi = st.cap;
+    }
+  }
+  pieces.front().stationary_start = cuts.front().stationary;
+  pieces.back().stationary_end = cuts.back().stationary;
   // Lengths; a piece of no length (coincident control points) joins the one before it.
   std::vector<MovePiece> out;
   for (MovePiece& p : pieces) {
@@ -47,8 +109,9 @@ std::vector<MovePiece> split_move(const Curve& c, const ArcLengthTable& table, d
       MovePiece& q = out.back();
       q.u1 = p.u1;
       q.s1_mm = p.s1_mm;
-      q.geometry.merge(p.geometry);
+      // (its geometry is not run through; sampled there, it is rounding noise)
       q.end = {std::min(q.end.velocity, p.end.velocity), std::max(q.end.jerk_share, p.end.jerk_share)};
+      q.stationary_end = p.stationary_end;
       continue;
     }
     out.push_back(p);
@@ -57,7 +120,7 @@ std::vector<MovePiece> split_move(const Curve& c, const ArcLengthTable& table, d
   if (out.size() > 1 && !(out[0].s1_mm > out[0].s0_mm)) {
     out[1].u0 = out[0].u0;
     out[1].s0_mm = out[0].s0_mm;
-    out[1].geometry.merge(out[0].geometry);
+    out[1].stationary_start = out[0].stationary_start;
     out.erase(out.begin());
   }
   out.back().s1_mm = table.length_mm();
@@ -119,6 +182,8 @@ void MotionPlanner::push(const program::Move& move) {
       // The tool point stops where only the extra axes go on (or start): a stop unless both stand.
       in = move.tool_still && last_tool_still_ ? extra_axes_junction(last_rate_, rate, machine_)
                                                : Junction{0.0, tolerances::plan_corner_jerk_share};
+    } else if (last_stationary_end_ || pieces.front().stationary_start) {
+      in = {0.0, tolerances::plan_corner_jerk_share};  // C' = 0 on one side: no tangent to go on along
     } else {
       in = tighter(junction(*last_end_, c.derivatives(c.u_min(), 2), machine_),
                    extra_axes_junction(last_rate_, rate, machine_));
@@ -167,6 +232,7 @@ void MotionPlanner::push(const program::Move& move) {
     }
   }
   last_end_ = c.derivatives_left(c.u_max(), 2);
+  last_stationary_end_ = pieces.back().stationary_end;
   last_rate_ = rate;
   last_tool_still_ = move.tool_still;
   last_exact_stop_ = move.exact_stop;

@@ -8,6 +8,11 @@ namespace kontur {
 
 /// Unit tangent C'/|C'|; zero vector where the curve is not regular (|C'| = 0).
 [[nodiscard]] Vec3 unit_tangent(const Derivatives& d) noexcept;
+/// Stationary points of a curve, in increasing order: the parameters where its parametric speed
+/// |C'| falls to at most `relative` times its largest value on the curve (a cusp, a degenerate end
+/// such as a repeated control point, a span of no length). Per span, its ends where they are such
+/// points, and the minima of |C'|^2 on a grid of `samples` intervals, refined by golden section.
+[[nodiscard]] std::vector<double> stationary_points(const Curve& curve, double relative, int samples);
 /// Curvature kappa = |C' x C''| / |C'|^3 [1/mm]; 0 where the curve is not regular.
 [[nodiscard]] double curvature(const Derivatives& d) noexcept;
 /// Chord (bow-height) error [mm] of a chord of length `step_mm` [mm] on a circle of radius

@@ -25,11 +25,15 @@ struct MovePiece {
   double s0_mm = 0.0, s1_mm = 0.0;  ///< arc-length range on the curve [mm]
   PathGeometry geometry;            ///< bounds of its geometry
   Junction end;                     ///< the junction with the next piece of the same move
+  /// It starts (ends) at a stationary point of the curve (C' = 0: a degenerate end): the path
+  /// stops there, whatever comes before (after) it.
+  bool stationary_start = false, stationary_end = false;
 };
 
 /// Cuts a move into pieces: at every breakpoint where tangent or curvature jump (a junction that
-/// limits the speed), and between spans whose speed caps differ by more than
-/// tolerances::plan_piece_cap_ratio (so a short tight bend slows only itself).
+/// limits the speed), at every stationary point (C' = 0, a cusp: a stop), and between stretches
+/// whose speed caps differ by more than tolerances::plan_piece_cap_ratio (so a short tight bend
+/// slows only itself; a span is cut in two where one part is that much faster than the whole).
 [[nodiscard]] std::vector<MovePiece> split_move(const Curve& curve, const ArcLengthTable& table, double feed_mm_s,
                                                 const Machine& machine);
 
@@ -90,6 +94,7 @@ class MotionPlanner {
   std::optional<Derivatives> last_end_;  // end of the last move pushed (for the junction)
   ExtraAxes last_rate_{};                // its extra axes' rates dq/ds (signed)
   bool last_tool_still_ = false;         // only its extra axes moved
+  bool last_stationary_end_ = false;     // its curve ends at a stationary point (C' = 0)
   bool last_exact_stop_ = true;          // the last move pushed ends at rest
   double initial_hold_s_ = 0.0;          // dwell before the next move, with nothing pending [s]
   long initial_hold_line_ = 0;
