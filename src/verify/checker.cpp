@@ -38,32 +38,52 @@ double refine(const Curve& c, const Vec3& p, double a, double b, double u) {
 // moves very unevenly in u), Newton around the best, and Newton around `u_hint` (the previous
 // setpoint's parameter: setpoints advance along the move); the closer of the two wins.
 double project(const Curve& c, const std::vector<double>& bp, const Vec3& p, double u_hint) {
-  // Setpoints advance along the move: the local refinement from the previous parameter lands on
-  // the path almost always, and the global search is done only when it does not.
+  // Setpoints advance along the move: the local refinement forward from the previous parameter
+  // lands on the path almost always, and the wider searches are done only when it does not.
   const double h = (c.u_max() - c.u_min()) * 1e-3;
-  const double u_local = refine(c, p, std::max(c.u_min(), u_hint - h), std::min(c.u_max(), u_hint + 64 * h),
-                                std::clamp(u_hint, c.u_min(), c.u_max()));
-  const double d_local = (c.point(u_local) - p).squaredNorm();
-  if (d_local <= 1e-24) return u_local;  // within 1e-12 mm
-  double best_u = c.u_min(), best_d = (c.point(best_u) - p).squaredNorm(), step = c.u_max() - c.u_min();
+  u_hint = std::clamp(u_hint, c.u_min(), c.u_max());
+  const auto dist2 = [&](double u) { return (c.point(u) - p).squaredNorm(); };
+  const double u_forward = refine(c, p, u_hint, std::min(c.u_max(), u_hint + 64 * h), u_hint);
+  if (dist2(u_forward) <= 1e-24) return u_forward;  // within 1e-12 mm
+  const double u_local = refine(c, p, std::max(c.u_min(), u_hint - h), std::min(c.u_max(), u_hint + 64 * h), u_hint);
+  // The nearest of 16 samples on every span (a NURBS with uneven weights moves very unevenly in
+  // u), and the nearest of those ahead of u_hint, each refined.
+  double best_u = c.u_min(), best_d = dist2(best_u), step = c.u_max() - c.u_min();
+  double ahead_u = u_hint, ahead_d = dist2(u_hint), ahead_step = step;
   for (std::size_t i = 0; i + 1 < bp.size(); ++i) {
     const double hs = (bp[i + 1] - bp[i]) / 16.0;
     for (int k = 0; k <= 16; ++k) {
       const double u = bp[i] + hs * k;
-      const double d = (c.point(u) - p).squaredNorm();
+      const double d = dist2(u);
       if (d < best_d) {
         best_d = d;
         best_u = u;
         step = hs;
       }
+      // (the last of equally near samples: past a span of no length, a corner's point is a sample
+      // of several spans, and the last one's span holds the point's foot ahead)
+      if (u >= u_hint && d <= ahead_d) {
+        ahead_d = d;
+        ahead_u = u;
+        ahead_step = hs;
+      }
     }
   }
   const double u_global = refine(c, p, std::max(c.u_min(), best_u - step), std::min(c.u_max(), best_u + step), best_u);
-  // The global point replaces the local one only when it is nearer by more than 1e-9 mm: where
-  // the path passes a place twice (a multi-turn arc), the other pass may be nearer by the
-  // rounding, and jumping there would break the order of the setpoints along the move.
-  const double d_global = (c.point(u_global) - p).norm();
-  return d_global < std::sqrt(d_local) - 1e-9 ? u_global : u_local;
+  const double u_ahead =
+      refine(c, p, std::max(u_hint, ahead_u - ahead_step), std::min(c.u_max(), ahead_u + ahead_step), ahead_u);
+  // Of the points within 1e-9 mm of the nearest, the first one ahead of u_hint: where the path
+  // passes a place twice (a multi-turn arc, a cusp that turns back along itself), the other pass
+  // may be as near, and jumping there would break the order of the setpoints along the move.
+  const double candidates[] = {u_forward, u_local, u_global, u_ahead};
+  double nearest = std::numeric_limits<double>::infinity();
+  for (double u : candidates) nearest = std::min(nearest, std::sqrt(dist2(u)));
+  double chosen = std::numeric_limits<double>::quiet_NaN();
+  for (double u : candidates)
+    if (u >= u_hint && std::sqrt(dist2(u)) <= nearest + 1e-9 && !(u >= chosen)) chosen = u;
+  if (chosen == chosen) return chosen;
+  // (none ahead: the nearest, the local one on a tie)
+  return std::sqrt(dist2(u_local)) <= nearest + 1e-9 ? u_local : u_global;
 }
 
 // One more deviation [mm] from a programmed shape with its tolerance [mm]: the largest deviation,
@@ -247,8 +267,8 @@ double blend_deviation(const Curve& c, const program::ProgrammedCorner& pc) {
 }
 
 bool Report::passed(const Machine& machine) const noexcept {
-  return finite && uniform_time && max_velocity_ratio <= 1 + kRelative && max_acceleration_ratio <= 1 + kRelative &&
-         max_jerk_ratio <= 1 + kRelative && max_path_error_mm <= 1e-6 &&
+  return finite && uniform_time && max_velocity_excess <= 1 + kRelative && max_acceleration_excess <= 1 + kRelative &&
+         max_jerk_excess <= 1 + kRelative && max_path_error_mm <= 1e-6 &&
          max_chord_error_mm <= machine.chord_tolerance_mm * (1 + kRelative) && start_error_mm <= 1e-9 &&
          end_error_mm <= 1e-9 && max_extra_axis_error <= 1e-6 && max_blend_deviation_ratio <= 1 + tolerances::blend_deviation_relative &&
          max_smoothing_deviation_ratio <= 1 + tolerances::smoothing_deviation_relative;
@@ -258,18 +278,22 @@ std::vector<std::string> Report::failures(const Machine& machine) const {
   std::vector<std::string> f;
   if (!finite) f.push_back("a setpoint is NaN or infinite");
   if (!uniform_time) f.push_back("the setpoints are not one servo period apart");
-  auto limit = [&](const char* what, double r, char axis) {
-    if (r > 1 + kRelative) f.push_back(fmt::format("{} of axis {} at {:.6f} times its limit", what, axis, r));
+  auto limit = [&](const char* what, double r, double excess, char axis) {
+    if (excess > 1 + kRelative) f.push_back(fmt::format("{} of axis {} at {:.6f} times its limit", what, axis, r));
   };
-  limit("velocity", max_velocity_ratio, worst_velocity_axis);
-  limit("acceleration", max_acceleration_ratio, worst_acceleration_axis);
-  limit("jerk", max_jerk_ratio, worst_jerk_axis);
+  limit("velocity", max_velocity_ratio, max_velocity_excess, worst_velocity_axis);
+  limit("acceleration", max_acceleration_ratio, max_acceleration_excess, worst_acceleration_axis);
+  limit("jerk", max_jerk_ratio, max_jerk_excess, worst_jerk_axis);
   if (max_path_error_mm > 1e-6) f.push_back(fmt::format("a setpoint is {:.3g} mm off the path", max_path_error_mm));
   if (max_chord_error_mm > machine.chord_tolerance_mm * (1 + kRelative))
     f.push_back(fmt::format("a chord is {:.3g} mm off the path (tolerance {} mm)", max_chord_error_mm,
                             machine.chord_tolerance_mm));
   if (start_error_mm > 1e-9) f.push_back(fmt::format("the first setpoint is {:.3g} mm from the start", start_error_mm));
-  if (end_error_mm > 1e-9) f.push_back(fmt::format("the last setpoint is {:.3g} mm from the end", end_error_mm));
+  if (end_error_mm > 1e-9)
+    f.push_back(end_error_line > 0
+                    ? fmt::format("the move of line {} ends {:.3g} mm from where the next one starts", end_error_line,
+                                  end_error_mm)
+                    : fmt::format("the last setpoint is {:.3g} mm from the end", end_error_mm));
   if (max_extra_axis_error > 1e-6)
     f.push_back(fmt::format("axis {} of a setpoint is {:.3g} {} from where its move puts it", worst_extra_axis,
                             max_extra_axis_error, extra_axis_index(worst_extra_axis) < 3 ? "deg" : "mm"));
@@ -417,19 +441,31 @@ void Checker::add(const Sample& s) {
   sm_.velocity_ratio = sm_.acceleration_ratio = sm_.jerk_ratio = 0.0;
   for (Axis& ax : axes_) {
     const int i = ax.index;
+    // one unit in the last place of the largest position of the difference [mm] or [deg]
+    double x_max = std::abs(p0[i]);
+    if (k >= 1) x_max = std::max(x_max, std::abs(p1[i]));
+    if (k >= 2) x_max = std::max(x_max, std::abs(p2[i]));
+    if (k >= 3) x_max = std::max(x_max, std::abs(p3[i]));
+    const double ulp = std::nextafter(x_max, std::numeric_limits<double>::infinity()) - x_max;
     if (k >= 1) {
-      const double v = std::abs(p0[i] - p1[i]) / T / ax.limits->max_velocity;
+      const double d = std::abs(p0[i] - p1[i]);
+      const double v = d / T / ax.limits->max_velocity;
       ax.max_v = std::max(ax.max_v, v);
+      ax.excess_v = std::max(ax.excess_v, std::max(0.0, d - 2.0 * ulp) / T / ax.limits->max_velocity);
       sm_.velocity_ratio = std::max(sm_.velocity_ratio, v);
     }
     if (k >= 2) {
-      const double a = std::abs(p0[i] - 2 * p1[i] + p2[i]) / (T * T) / ax.limits->max_acceleration;
+      const double d = std::abs(p0[i] - 2 * p1[i] + p2[i]);
+      const double a = d / (T * T) / ax.limits->max_acceleration;
       ax.max_a = std::max(ax.max_a, a);
+      ax.excess_a = std::max(ax.excess_a, std::max(0.0, d - 4.0 * ulp) / (T * T) / ax.limits->max_acceleration);
       sm_.acceleration_ratio = std::max(sm_.acceleration_ratio, a);
     }
     if (k >= 3) {
-      const double j = std::abs(p0[i] - 3 * p1[i] + 3 * p2[i] - p3[i]) / (T * T * T) / ax.limits->max_jerk;
+      const double d = std::abs(p0[i] - 3 * p1[i] + 3 * p2[i] - p3[i]);
+      const double j = d / (T * T * T) / ax.limits->max_jerk;
       ax.max_j = std::max(ax.max_j, j);
+      ax.excess_j = std::max(ax.excess_j, std::max(0.0, d - 8.0 * ulp) / (T * T * T) / ax.limits->max_jerk);
       sm_.jerk_ratio = std::max(sm_.jerk_ratio, j);
     }
   }
@@ -512,6 +548,16 @@ Report Checker::finish() {
   for (std::size_t i = 0; i < moves_.size(); ++i) r.blocks[i].source_line = moves_[i].source_line;
   const Curve& last = *moves_.back().curve;
   r.end_error_mm = (last_point_ - last.point(last.u_max())).norm();
+  // Every block end: where each move ends, the next one starts (else the setpoints jump there).
+  for (std::size_t i = 0; i + 1 < moves_.size(); ++i) {
+    const Curve& a = *moves_[i].curve;
+    const Curve& b = *moves_[i + 1].curve;
+    const double gap = (b.point(b.u_min()) - a.point(a.u_max())).norm();
+    if (gap > r.end_error_mm) {
+      r.end_error_mm = gap;
+      r.end_error_line = moves_[i].source_line;
+    }
+  }
   if (layout_.has_extra() && r.worst_extra_axis == ' ')  // measured, and exact: name the first
     for (int e = extra_axis_count - 1; e >= 0; --e)
       if (layout_.index_of(extra_axis_letters[e]) >= 0) r.worst_extra_axis = extra_axis_letters[e];
@@ -529,6 +575,9 @@ Report Checker::finish() {
   }
   // The worst axis: the first in the machine's order with the largest ratio.
   for (const Axis& ax : axes_) {
+    r.max_velocity_excess = std::max(r.max_velocity_excess, ax.excess_v);
+    r.max_acceleration_excess = std::max(r.max_acceleration_excess, ax.excess_a);
+    r.max_jerk_excess = std::max(r.max_jerk_excess, ax.excess_j);
     if (ax.max_v > r.max_velocity_ratio) {
       r.max_velocity_ratio = ax.max_v;
       r.worst_velocity_axis = ax.limits->name;
