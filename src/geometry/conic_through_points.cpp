@@ -86,7 +86,32 @@ Derivatives ConicArc::derivatives(double u, int order) const noexcept {
   Derivatives d;
   d[0] = focus_ + fx[0] * x_ + fy[0] * y_;
   for (int k = 1; k <= std::min(order, 3); ++k) d[k] = fx[k] * x_ + fy[k] * y_;
+  if (pinned_) {
+    // offset(u) = start_offset + s(x) (end_offset - start_offset), x = u / sweep, with the quintic
+    // smooth step s = x^3 (10 - 15 x + 6 x^2): s' = s'' = 0 at both ends
+    const double x = std::clamp(u, 0.0, sweep_) / sweep_;
+    const Vec3 jump = end_offset_ - start_offset_;
+    const double sx[4] = {x * x * x * (10.0 - 15.0 * x + 6.0 * x * x), 30.0 * x * x * (1.0 - x) * (1.0 - x),
+                          60.0 * x * (1.0 - x) * (1.0 - 2.0 * x), 60.0 * (1.0 - 6.0 * x + 6.0 * x * x)};
+    d[0] += start_offset_ + sx[0] * jump;
+    double scale = 1.0;
+    for (int k = 1; k <= std::min(order, 3); ++k) {
+      scale /= sweep_;
+      d[k] += sx[k] * scale * jump;
+    }
+    if (u <= 0.0) d[0] = start_;
+    if (u >= sweep_) d[0] = end_;
+  }
   return d;
+}
+
+void ConicArc::pin_ends(const Vec3& start_mm, const Vec3& end_mm) noexcept {
+  pinned_ = false;
+  start_offset_ = start_mm - point(0.0);
+  end_offset_ = end_mm - point(sweep_);
+  start_ = start_mm;
+  end_ = end_mm;
+  pinned_ = true;
 }
 
 // ------------------------------------------------------------------------------- the fit
@@ -132,7 +157,9 @@ std::string degenerate_kind(const std::array<Vec3, 5>& r, std::size_t i, std::si
 
 ConicArc ConicThroughPoints::curve() const {
   const Vec3 x = focal_to_machine.block<3, 1>(0, 0), y = focal_to_machine.block<3, 1>(0, 1);
-  return ConicArc(focus, x, y, focal_parameter_mm, eccentricity, focal_angles_rad[0], theta15_rad);
+  ConicArc arc(focus, x, y, focal_parameter_mm, eccentricity, focal_angles_rad[0], theta15_rad);
+  arc.pin_ends(points[0], points[4]);  // from r1 to r5 exactly (they may lie off the conic's plane)
+  return arc;
 }
 
 ConicThroughPoints conic_through_points(const std::array<Vec3, 5>& r, const ConicOptions& options) {

@@ -46,6 +46,16 @@ public:
   /// Point in the focal frame (rho cos phi, rho sin phi, 0) at u [mm].
   [[nodiscard]] Vec3 focal_point(double u) const noexcept;
 
+  /// Makes the arc start at `start_mm` and end at `end_mm` exactly: the differences from the
+  /// conic's own ends (a few um at most: points rounded off the conic's plane) are spread along
+  /// the arc by a quintic smooth step, which leaves the tangent and curvature at both ends as
+  /// they were (issue 20, case 8: a CONIC ended 3e-5 mm off its programmed end, and the next move
+  /// jumped).
+  void pin_ends(const Vec3& start_mm, const Vec3& end_mm) noexcept;
+  /// The correction at the start and at the end [mm] (zero unless pin_ends was called).
+  [[nodiscard]] const Vec3& start_offset_mm() const noexcept { return start_offset_; }
+  [[nodiscard]] const Vec3& end_offset_mm() const noexcept { return end_offset_; }
+
   [[nodiscard]] const Vec3& focus_mm() const noexcept { return focus_; }
   [[nodiscard]] const Vec3& x_axis() const noexcept { return x_; }
   [[nodiscard]] const Vec3& y_axis() const noexcept { return y_; }
@@ -57,6 +67,9 @@ public:
 private:
   Vec3 focus_, x_, y_;
   double p_, e_, phi0_, sweep_;
+  Vec3 start_offset_ = Vec3::Zero(), end_offset_ = Vec3::Zero();  // [mm] (pin_ends)
+  bool pinned_ = false;
+  Vec3 start_ = Vec3::Zero(), end_ = Vec3::Zero();  // the pinned ends [mm]
 };
 
 /// Options of the conic fit.
