@@ -21,6 +21,14 @@ double refine(const Curve& c, const Vec3& p, double a, double b, double u) {
     // (rounding can make f exactly zero: u is then the foot of the normal, unless it is a farthest
     // point or C' vanishes there)
     if (f == 0.0 && fp > 0.0 && d[1].squaredNorm() > 0.0) return u;
+    // (C' = 0 to rounding, against C'' over the bracket: u is a stationary point, which says
+    // nothing of where the foot is: halve the bracket)
+    if (d[1].norm() <= 1e-9 * d[2].norm() * (b - a) || d[1].squaredNorm() == 0.0) {
+      const double mid = 0.5 * (a + b);
+      if (mid == u || mid == a || mid == b) return u;
+      u = mid;
+      continue;
+    }
     if (f > 0.0)
       b = u;
     else
@@ -34,48 +42,69 @@ double refine(const Curve& c, const Vec3& p, double a, double b, double u) {
   return u;
 }
 
-// Closest parameter on a curve to p: 16 samples on every span (a NURBS with uneven weights
-// moves very unevenly in u), Newton around the best, and Newton around `u_hint` (the previous
-// setpoint's parameter: setpoints advance along the move); the closer of the two wins.
+// Closest parameter on a curve to p: the refinement forward from `u_hint` (the previous
+// setpoint's parameter: setpoints advance along the move), else the nearest of 16 samples on every
+// span (a NURBS with uneven weights moves very unevenly in u), refined by Newton within its span.
+// Every Newton bracket lies within one span: at a breakpoint the curve may turn (a double knot) or
+// stand still (repeated control points), where (C - p) . C' jumps.
 double project(const Curve& c, const std::vector<double>& bp, const Vec3& p, double u_hint) {
-  // Setpoints advance along the move: the local refinement forward from the previous parameter
-  // lands on the path almost always, and the wider searches are done only when it does not.
   const double h = (c.u_max() - c.u_min()) * 1e-3;
   u_hint = std::clamp(u_hint, c.u_min(), c.u_max());
   const auto dist2 = [&](double u) { return (c.point(u) - p).squaredNorm(); };
-  const double u_forward = refine(c, p, u_hint, std::min(c.u_max(), u_hint + 64 * h), u_hint);
-  if (dist2(u_forward) <= 1e-24) return u_forward;  // within 1e-12 mm
-  const double u_local = refine(c, p, std::max(c.u_min(), u_hint - h), std::min(c.u_max(), u_hint + 64 * h), u_hint);
-  // The nearest of 16 samples on every span (a NURBS with uneven weights moves very unevenly in
-  // u), and the nearest of those ahead of u_hint, each refined.
-  double best_u = c.u_min(), best_d = dist2(best_u), step = c.u_max() - c.u_min();
-  double ahead_u = u_hint, ahead_d = dist2(u_hint), ahead_step = step;
+  // the span holding u: bp[i] <= u < bp[i + 1] (the last span for the curve's end)
+  const auto span_of = [&](double u) {
+    const auto it = std::upper_bound(bp.begin(), bp.end(), u);
+    const auto i = static_cast<std::size_t>(std::max<std::ptrdiff_t>(it - bp.begin() - 1, 0));
+    return std::min(i, bp.size() - 2);
+  };
+  // Newton in [lo, hi] split at the breakpoints inside; the nearest result (the first on a tie)
+  const auto refine_spans = [&](double lo, double hi, double start) {
+    double best = start, best_d = dist2(start);
+    for (std::size_t i = span_of(lo); i + 1 < bp.size() && bp[i] <= hi; ++i) {
+      const double a = std::max(lo, bp[i]), b = std::min(hi, bp[i + 1]);
+      if (!(a <= b)) continue;
+      const double u = refine(c, p, a, b, std::clamp(start, a, b) == start ? start : 0.5 * (a + b));
+      const double d = dist2(u);
+      if (d < best_d) {
+        best_d = d;
+        best = u;
+      }
+    }
+    return best;
+  };
+  // forward, within the span of u_hint and the next ones up to 64 h ahead
+  const double forward_end = std::min(c.u_max(), u_hint + 64 * h);
+  double u_forward = u_hint;
+  for (std::size_t i = span_of(u_hint); i + 1 < bp.size() && bp[i] <= forward_end; ++i) {
+    const double a = std::max(u_hint, bp[i]), b = std::min(forward_end, bp[i + 1]);
+    if (!(a <= b)) continue;
+    const double u = refine(c, p, a, b, a);
+    if (dist2(u) < dist2(u_forward)) u_forward = u;
+    if (dist2(u_forward) <= 1e-24) return u_forward;  // within 1e-12 mm
+  }
+  const double u_local = refine_spans(std::max(c.u_min(), u_hint - h), u_hint, u_hint);
+  // Every span's nearest of 17 samples, refined within the span: a candidate per span (the
+  // nearest of the whole curve may be in a span of no length or beyond a corner the forward
+  // refinement does not reach).
+  std::vector<double> candidates = {u_forward, u_local};
   for (std::size_t i = 0; i + 1 < bp.size(); ++i) {
     const double hs = (bp[i + 1] - bp[i]) / 16.0;
-    for (int k = 0; k <= 16; ++k) {
-      const double u = bp[i] + hs * k;
+    double best_u = bp[i], best_d = dist2(best_u);
+    for (int k = 1; k <= 16; ++k) {
+      const double u = k == 16 ? bp[i + 1] : bp[i] + hs * k;
       const double d = dist2(u);
       if (d < best_d) {
         best_d = d;
         best_u = u;
-        step = hs;
-      }
-      // (the last of equally near samples: past a span of no length, a corner's point is a sample
-      // of several spans, and the last one's span holds the point's foot ahead)
-      if (u >= u_hint && d <= ahead_d) {
-        ahead_d = d;
-        ahead_u = u;
-        ahead_step = hs;
       }
     }
+    const double lo = std::max(bp[i], best_u - hs), hi = std::min(bp[i + 1], best_u + hs);
+    // (from inside the span: at its right end the derivatives are the next span's)
+    candidates.push_back(refine(c, p, lo, hi, best_u < bp[i + 1] ? best_u : 0.5 * (lo + hi)));
   }
-  const double u_global = refine(c, p, std::max(c.u_min(), best_u - step), std::min(c.u_max(), best_u + step), best_u);
-  const double u_ahead =
-      refine(c, p, std::max(u_hint, ahead_u - ahead_step), std::min(c.u_max(), ahead_u + ahead_step), ahead_u);
   // Of the points within 1e-9 mm of the nearest, the first one ahead of u_hint: where the path
   // passes a place twice (a multi-turn arc, a cusp that turns back along itself), the other pass
   // may be as near, and jumping there would break the order of the setpoints along the move.
-  const double candidates[] = {u_forward, u_local, u_global, u_ahead};
   double nearest = std::numeric_limits<double>::infinity();
   for (double u : candidates) nearest = std::min(nearest, std::sqrt(dist2(u)));
   double chosen = std::numeric_limits<double>::quiet_NaN();
@@ -83,7 +112,10 @@ double project(const Curve& c, const std::vector<double>& bp, const Vec3& p, dou
     if (u >= u_hint && std::sqrt(dist2(u)) <= nearest + 1e-9 && !(u >= chosen)) chosen = u;
   if (chosen == chosen) return chosen;
   // (none ahead: the nearest, the local one on a tie)
-  return std::sqrt(dist2(u_local)) <= nearest + 1e-9 ? u_local : u_global;
+  if (std::sqrt(dist2(u_local)) <= nearest + 1e-9) return u_local;
+  for (double u : candidates)
+    if (std::sqrt(dist2(u)) <= nearest) return u;
+  return u_local;
 }
 
 // One more deviation [mm] from a programmed shape with its tolerance [mm]: the largest deviation,
@@ -327,6 +359,29 @@ const std::vector<double>& Checker::spans_of(std::size_t i) {
   return breakpoints_[i];
 }
 
+const std::vector<double>& Checker::corners_of(std::size_t i) {
+  if (corners_.size() <= i) {
+    corners_.resize(i + 1);
+    corners_known_.resize(i + 1, false);
+  }
+  if (!corners_known_[i]) {
+    const Curve& c = *moves_[i].curve;
+    std::vector<double> out = stationary_points(c, tolerances::plan_stationary_speed_relative,
+                                                tolerances::plan_stationary_search_samples);
+    const std::vector<double>& bp = spans_of(i);
+    for (std::size_t k = 1; k + 1 < bp.size(); ++k) {
+      const Vec3 before = unit_tangent(c.derivatives_left(bp[k], 1)), after = unit_tangent(c.derivatives(bp[k], 1));
+      if (!before.isZero() && !after.isZero() && (after - before).norm() > tolerances::check_corner_tangent_jump)
+        out.push_back(bp[k]);
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    corners_[i] = std::move(out);
+    corners_known_[i] = true;
+  }
+  return corners_[i];
+}
+
 std::size_t Checker::match(const Sample& s, const Vec3& p, double& u, double& d) {
   const std::size_t k = static_cast<std::size_t>(r_.samples - 1);
   if (s.move != program::no_move && s.move < moves_.size()) {
@@ -493,14 +548,30 @@ void Checker::add(const Sample& s) {
   }
   double chord = 0.0;
   if (k > 0 && m == m_prev_ && u > u_prev_) {
-    // The bow of the path between the two setpoints from their chord.
-    const Vec3 a = previous_point_, b = p, ab = b - a;
-    const double len2 = ab.squaredNorm();
-    for (int q = 1; q < 8; ++q) {
-      const Vec3 pq = c.point(u_prev_ + (u - u_prev_) * q / 8.0) - a;
-      const double t = len2 > 0.0 ? std::clamp(pq.dot(ab) / len2, 0.0, 1.0) : 0.0;
-      chord = std::max(chord, (pq - t * ab).norm());
+    // The bow of the path between the two setpoints from their chord. Where the move has a corner
+    // in between (a cusp, a tangent jump at a breakpoint), the two sides are measured from their
+    // own chords through it, as two moves would be.
+    const auto bow = [&](double u0, double u1, const Vec3& a, const Vec3& b) {
+      const Vec3 ab = b - a;
+      const double len2 = ab.squaredNorm();
+      double worst = 0.0;
+      for (int q = 1; q < 8; ++q) {
+        const Vec3 pq = c.point(u0 + (u1 - u0) * q / 8.0) - a;
+        const double t = len2 > 0.0 ? std::clamp(pq.dot(ab) / len2, 0.0, 1.0) : 0.0;
+        worst = std::max(worst, (pq - t * ab).norm());
+      }
+      return worst;
+    };
+    const std::vector<double>& corners = corners_of(m);
+    double ua = u_prev_;
+    Vec3 a = previous_point_;
+    for (auto it = std::upper_bound(corners.begin(), corners.end(), u_prev_); it != corners.end() && *it < u; ++it) {
+      const Vec3 corner = c.point(*it);
+      chord = std::max(chord, bow(ua, *it, a, corner));
+      ua = *it;
+      a = corner;
     }
+    chord = std::max(chord, bow(ua, u, a, p));
     r_.max_chord_error_mm = std::max(r_.max_chord_error_mm, chord);
   }
   if (r_.blocks.size() <= m) r_.blocks.resize(m + 1);

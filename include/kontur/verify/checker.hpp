@@ -144,6 +144,10 @@ class Checker {
     double excess_v = 0.0, excess_a = 0.0, excess_j = 0.0;  // less the rounding of the positions
   };
   [[nodiscard]] const std::vector<double>& spans_of(std::size_t move);
+  // The move's corners, computed once: where its curve stands still (C' = 0: a cusp or a repeated
+  // control point, where the planner stops) or its tangent jumps at a breakpoint (a double knot, a
+  // degree-1 spline): the setpoints cut them as they cut a corner between two moves.
+  [[nodiscard]] const std::vector<double>& corners_of(std::size_t move);
   std::vector<std::unique_ptr<ArcLengthTable>> tables_;  // per move with extra axes (distance of u)
   ExtraAxes last_extra_{};                               // extra axes of the last setpoint
   [[nodiscard]] std::size_t match(const Sample& s, const Vec3& p, double& u, double& d);
@@ -167,6 +171,8 @@ class Checker {
   double t_previous_ = 0.0;
   Vec3 last_point_ = Vec3::Zero();
   std::vector<std::vector<double>> breakpoints_;  // per move, computed once (the projection samples every span)
+  std::vector<std::vector<double>> corners_;     // per move, computed once (corners_of)
+  std::vector<bool> corners_known_;
   std::unique_ptr<PathIndex> index_;              // built on the first setpoint that needs it
   std::size_t m_ = 0, m_prev_ = 0;
   double u_prev_ = 0.0;
