@@ -10,6 +10,9 @@ namespace kontur::tolerances {
 // ---- geometry of curves
 /// Maximum supported NURBS degree (order 10).
 inline constexpr int max_degree = 9;
+/// A NURBS move is planned on its span polynomials (fast) when they are within this distance of
+/// the NURBS at the ends and 8 points of every span [mm]; otherwise on the NURBS itself.
+inline constexpr double span_polynomial_max_error_mm = 1e-11;
 /// Largest derivative order evaluated by Curve::derivatives (point, first, second, third).
 inline constexpr int max_derivative = 3;
 /// Two knots closer than this, relative to the parameter range, count as equal when the end
@@ -220,16 +223,36 @@ inline constexpr double plan_sample_margin = 0.05;
 /// there (issue 20, cases 1-4 and 7). The grid on which |C'| is searched for such points.
 inline constexpr double plan_stationary_speed_relative = 1e-6;
 inline constexpr int plan_stationary_search_samples = 64;
-/// A span whose speed cap is below plan_piece_cap_ratio times the cap of one of its two parts
-/// (cut at 0.382 of its parameter range) is cut there, and so on in each part (a tight turn in a
-/// span then slows only a short stretch around it, issue 20), at most this many times deep and
-/// into at most this many pieces.
-inline constexpr int plan_span_max_depth = 40;
+/// Between a stationary point and the next cut, points where |C'| is at most this share of its
+/// peak there are not sampled for the speed caps: their curvature is rounding noise (a cusp's
+/// computed curvature reached 1e19 / mm within 1e-9 mm of it and the motion crawled for hours).
+/// Far below plan_stationary_speed_relative: a large weight makes |C'| that small on a regular,
+/// tightly turning stretch, whose curvature must be kept.
+inline constexpr double plan_noise_speed_relative = 1e-9;
+/// Around a stationary point the curvature grows without bound (a cusp's is about 1 / sqrt(s)),
+/// while the motion stops there: the stretch within this share of what the setpoints can show is
+/// left out of the speed caps. The share is of the smallest of a T^2 / 4 and j T^3 / 8 over the
+/// axes [mm] (the displacement whose second / third difference over the servo period T reaches the
+/// acceleration a / jerk j), times plan_limit_safety: a turn that short moves no setpoint enough to
+/// matter (issue 20: a degree-4 spline ending on a repeated point crawled for 9800 s).
+inline constexpr double plan_stationary_blind_share = 0.1;
+/// A sample of a stretch whose |K| or |dK/ds| is a local maximum above a neighbour's by more than
+/// this factor is refined by golden section between its neighbours (a large NURBS weight makes a
+/// peak narrower than the samples: issue 20, a jerk 3.1 times the limit).
+inline constexpr double plan_peak_refine_ratio = 1.1;
+/// A span whose speed cap is below plan_piece_cap_ratio times the cap of one of its four quarters
+/// (of its parameter range) is cut into them, and so on in each quarter (a tight turn in a span
+/// then slows only a short stretch around it, issue 20), at most this many times deep and into at
+/// most this many pieces.
+inline constexpr int plan_span_max_depth = 30;
 inline constexpr int plan_span_max_pieces = 256;
 /// The planner plans with every axis limit lowered by this share. The check differentiates the
 /// setpoints: a position noise e [mm] (the arc-length inverse is accurate to about 1e-13 of a
 /// move's length) shows as 8 e / T^3 of jerk, 1e-6 of the limit already at e = 1e-11 mm, T = 1 ms.
 inline constexpr double plan_limit_safety = 1e-4;
+/// A speed profile whose phases, run to its end time, cover its distance to within this share are
+/// stretched onto it exactly (trajectory::PathProfile); a larger difference is left to the clamp.
+inline constexpr double profile_end_rescale_relative = 1e-9;
 /// Neighbouring spans of a curve whose speed caps are within this factor are planned as one piece.
 inline constexpr double plan_piece_cap_ratio = 1.5;
 /// A chain's profile that follows its pieces' caps (plan/chain_profile.hpp): the speed may exceed
@@ -330,6 +353,10 @@ inline constexpr int check_blend_samples = 256;
 /// that move, so the lower level's replay (within 1e-6 mm of the planner's setpoints) is not taken
 /// to another move where the path crosses itself.
 inline constexpr double check_resync_mm = 1e-6;
+/// A breakpoint of a move where the unit tangent jumps by more than this is a corner to the
+/// chord check (checker): the setpoints on either side are measured against chords through it, as
+/// at a corner between two moves (a degree-1 or double-knot spline has corners inside one move).
+inline constexpr double check_corner_tangent_jump = 1e-3;
 /// The checker accepts a blend whose deviation exceeds its tolerance by at most this, relative.
 inline constexpr double blend_deviation_relative = 1e-9;
 

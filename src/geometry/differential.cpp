@@ -68,6 +68,16 @@ double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) noexcept {
 
 namespace kontur {
 
+double peak_parametric_speed(const Curve& curve, double u0, double u1, int samples) {
+  samples = std::max(samples, 1);
+  double peak = 0.0;
+  for (int k = 0; k <= samples; ++k) {
+    const double u = k == samples ? u1 : u0 + (u1 - u0) * k / samples;
+    peak = std::max(peak, (k == samples ? curve.derivatives_left(u, 1) : curve.derivatives(u, 1))[1].norm());
+  }
+  return peak;
+}
+
 std::vector<double> stationary_points(const Curve& curve, double relative, int samples) {
   std::vector<double> out;
   const std::vector<double> bp = curve.breakpoints();

@@ -103,7 +103,7 @@ std::pair<Vec3, Vec3> curvature_vector_and_rate(const Derivatives& d) noexcept {
   return {k, dk_du / std::sqrt(q)};
 }
 
-PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples) {
+PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, double speed_floor) {
   samples = std::max(samples, 1);
   // Sample until the tangent turns by at most 0.2 rad between samples (a helix of many turns is
   // one span); then a component's peak lies at most about 1 % of its range above the samples.
@@ -114,37 +114,99 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples) {
     double max_turn = 0.0;
     Vec3 t_before = Vec3::Zero();
     // The span's own polynomial at its right end (the next span may differ there).
-    std::vector<Derivatives> ds(static_cast<std::size_t>(samples) + 1);
-    double peak_speed = 0.0;  // largest |C'| of the samples [mm per parameter unit]
-    for (int k = 0; k <= samples; ++k) {
-      const double u = k == samples ? u1 : u0 + (u1 - u0) * k / samples;
-      ds[static_cast<std::size_t>(k)] = k == samples ? c.derivatives_left(u, 3) : c.derivatives(u, 3);
-      peak_speed = std::max(peak_speed, ds[static_cast<std::size_t>(k)][1].norm());
+    const auto n = static_cast<std::size_t>(samples) + 1;
+    std::vector<Derivatives> ds(n);
+    std::vector<double> us(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      us[k] = k + 1 == n ? u1 : u0 + (u1 - u0) * static_cast<double>(k) / samples;
+      ds[k] = k + 1 == n ? c.derivatives_left(us[k], 3) : c.derivatives(us[k], 3);
     }
-    for (const Derivatives& d : ds) {
-      // At a stationary point (C' = 0 up to rounding) the tangent and curvature are noise; the
-      // path stops there (split_move), and the samples beside it bound the stretch.
-      if (!(d[1].norm() > tolerances::plan_stationary_speed_relative * peak_speed)) continue;
+    // At a stationary point (C' = 0 up to rounding: at most speed_floor) the tangent and curvature
+    // are noise; the path stops there (split_move), and the samples beside it bound the stretch.
+    // (Not relative to this stretch's own samples: a large weight makes |C'| a millionth of its
+    // peak on a regular, tightly turning part of the same span.)
+    const auto regular = [&](const Derivatives& d) {
+      return d[1].norm() > speed_floor && !unit_tangent(d).isZero();
+    };
+    const auto add = [&](const Derivatives& d, PathGeometry& g, bool smallest) {
+      const Vec3 at = unit_tangent(d).cwiseAbs();
+      const auto [kv, rate] = curvature_vector_and_rate(d);
+      const Vec3 ak = kv.cwiseAbs(), ar = rate.cwiseAbs();
+      if (smallest) {
+        g.tangent = g.tangent.cwiseMin(at);
+        g.curvature = g.curvature.cwiseMin(ak);
+        g.curvature_rate = g.curvature_rate.cwiseMin(ar);
+        g.max_kappa = std::min(g.max_kappa, kv.norm());
+      } else {
+        g.tangent = g.tangent.cwiseMax(at);
+        g.curvature = g.curvature.cwiseMax(ak);
+        g.curvature_rate = g.curvature_rate.cwiseMax(ar);
+        g.max_kappa = std::max(g.max_kappa, kv.norm());
+      }
+    };
+    // |K| and |dK/ds| of each regular sample (-1: not regular)
+    std::vector<double> kappa(n, -1.0), rate(n, -1.0);
+    for (std::size_t k = 0; k < n; ++k) {
+      const Derivatives& d = ds[k];
+      if (!regular(d)) continue;
       const Vec3 t = unit_tangent(d);
-      if (t.isZero()) continue;
       if (!t_before.isZero()) max_turn = std::max(max_turn, (t - t_before).norm());
       t_before = t;
-      const auto [kv, rate] = curvature_vector_and_rate(d);
-      const Vec3 at = t.cwiseAbs(), ak = kv.cwiseAbs(), ar = rate.cwiseAbs();
-      hi.tangent = hi.tangent.cwiseMax(at);
-      hi.curvature = hi.curvature.cwiseMax(ak);
-      hi.curvature_rate = hi.curvature_rate.cwiseMax(ar);
-      hi.max_kappa = std::max(hi.max_kappa, kv.norm());
-      lo.tangent = lo.tangent.cwiseMin(at);
-      lo.curvature = lo.curvature.cwiseMin(ak);
-      lo.curvature_rate = lo.curvature_rate.cwiseMin(ar);
-      lo.max_kappa = std::min(lo.max_kappa, kv.norm());
+      add(d, hi, false);
+      add(d, lo, true);
+      const auto [kv, kr] = curvature_vector_and_rate(d);
+      kappa[k] = kv.norm();
+      rate[k] = kr.norm();
     }
     if (max_turn > 0.2 && samples < 4096) {
       samples *= 4;
       continue;
     }
     if (!std::isfinite(lo.max_kappa)) return hi;  // no regular point
+    // A narrow peak of |K| or |dK/ds| between samples (a large weight bends a small part of a
+    // span): each sample that is a local maximum standing out of a neighbour by more than
+    // tolerances::plan_peak_refine_ratio is refined by golden section between its neighbours.
+    for (std::vector<double>* f : {&kappa, &rate}) {
+      const std::vector<double>& v = *f;
+      for (std::size_t k = 0; k < n; ++k) {
+        if (v[k] < 0.0) continue;
+        const double left = k > 0 ? v[k - 1] : -1.0, right = k + 1 < n ? v[k + 1] : -1.0;
+        if (v[k] < left || v[k] < right) continue;
+        const double low = std::min(left < 0.0 ? kInf : left, right < 0.0 ? kInf : right);
+        if (!(v[k] > tolerances::plan_peak_refine_ratio * low)) continue;
+        const bool of_rate = f == &rate;
+        const auto value = [&](double u, Derivatives& d) {
+          d = c.derivatives(u, 3);
+          if (!regular(d)) return -1.0;
+          const auto [kv, kr] = curvature_vector_and_rate(d);
+          return of_rate ? kr.norm() : kv.norm();
+        };
+        constexpr double g = 0.6180339887498949;
+        double a = us[k > 0 ? k - 1 : k], b = us[k + 1 < n ? k + 1 : k];
+        double x1 = b - g * (b - a), x2 = a + g * (b - a);
+        Derivatives d1, d2;
+        double f1 = value(x1, d1), f2 = value(x2, d2);
+        for (int it = 0; it < 60 && a < x1 && x1 < x2 && x2 < b; ++it) {
+          if (f1 >= f2) {
+            b = x2;
+            x2 = x1;
+            f2 = f1;
+            d2 = d1;
+            x1 = b - g * (b - a);
+            f1 = value(x1, d1);
+          } else {
+            a = x1;
+            x1 = x2;
+            f1 = f2;
+            d1 = d2;
+            x2 = a + g * (b - a);
+            f2 = value(x2, d2);
+          }
+        }
+        if (f1 >= 0.0) add(d1, hi, false);
+        if (f2 >= 0.0) add(d2, hi, false);
+      }
+    }
     // Constant quantities (a line's tangent, a circle's curvature) are exact; the others are
     // raised by a share of their range between the samples.
     constexpr double m = tolerances::plan_sample_margin;

@@ -1,3 +1,4 @@
+#include <array>
 #include <algorithm>
 #include <cmath>
 #include <kontur/geometry/differential.hpp>
@@ -22,25 +23,37 @@ double span_cap(const PathGeometry& g, double feed_mm_s, const Machine& machine)
   return speed_cap(g, feed_mm_s, machine, tolerances::plan_centripetal_shares[0]);
 }
 
-// Appends [u0, u1] to `out`, cut in two while one part's cap is over plan_piece_cap_ratio times the
-// whole's (a tight turn in a span then slows only a short stretch around it). Only a cap set by
+// Appends [u0, u1] to `out`, cut in four while one part's cap is over plan_piece_cap_ratio times the
+// whole's (a tight turn in a span then slows only a short stretch around it; in four, not two: a
+// span tight at both ends and easy between has each half as slow as the whole). Only a cap set by
 // the curvature is looked at: the feed and the axis velocities do not change much within a span.
 void add_stretches(const Curve& c, double u0, double u1, const PathGeometry& g, double cap, double feed_mm_s,
-                const Machine& machine, int depth, std::vector<CapSpan>& out, int& budget) {
+                   const Machine& machine, double speed_floor, int depth, std::vector<CapSpan>& out, int& budget) {
+  constexpr int parts = 4;
   PathGeometry straight = g;
   straight.curvature = straight.curvature_rate = Vec3::Zero();
   straight.max_kappa = 0.0;
   const bool bent = cap < span_cap(straight, feed_mm_s, machine);
-  // (not at the middle: a symmetric curve has its tight turn there, and both halves would hold it)
-  const double um = u0 + 0.3819660112501051 * (u1 - u0);
-  if (bent && depth < tolerances::plan_span_max_depth && budget > 1 && um > u0 && um < u1) {
-    const PathGeometry ga = path_geometry(c, u0, um), gb = path_geometry(c, um, u1);
-    const double ca = span_cap(ga, feed_mm_s, machine), cb = span_cap(gb, feed_mm_s, machine);
-    if (std::max(ca, cb) > tolerances::plan_piece_cap_ratio * cap) {
-      --budget;  // one more piece
-      add_stretches(c, u0, um, ga, ca, feed_mm_s, machine, depth + 1, out, budget);
-      add_stretches(c, um, u1, gb, cb, feed_mm_s, machine, depth + 1, out, budget);
-      return;
+  if (bent && depth < tolerances::plan_span_max_depth && budget > parts - 1) {
+    std::array<double, parts + 1> us{};
+    for (int i = 0; i <= parts; ++i) us[static_cast<std::size_t>(i)] = i == parts ? u1 : u0 + (u1 - u0) * i / parts;
+    bool distinct = true;
+    for (int i = 0; i < parts; ++i) distinct = distinct && us[static_cast<std::size_t>(i)] < us[static_cast<std::size_t>(i) + 1];
+    if (distinct) {
+      std::array<PathGeometry, parts> gs;
+      std::array<double, parts> cs{};
+      double best = 0.0;
+      for (std::size_t i = 0; i < parts; ++i) {
+        gs[i] = path_geometry(c, us[i], us[i + 1], tolerances::plan_samples_per_span, speed_floor);
+        cs[i] = span_cap(gs[i], feed_mm_s, machine);
+        best = std::max(best, cs[i]);
+      }
+      if (best > tolerances::plan_piece_cap_ratio * cap) {
+        budget -= parts - 1;
+        for (std::size_t i = 0; i < parts; ++i)
+          add_stretches(c, us[i], us[i + 1], gs[i], cs[i], feed_mm_s, machine, speed_floor, depth + 1, out, budget);
+        return;
+      }
     }
   }
   out.push_back({u0, u1, g, cap});
@@ -64,14 +77,47 @@ std::vector<MovePiece> split_move(const Curve& c, const ArcLengthTable& table, d
     if (at != cuts.end() && at->u == u) at->stationary = true;
     else cuts.insert(at, {u, false, true});
   }
+  // The stretch next to a stationary point that no setpoint can show [mm] (tolerances.hpp).
+  double blind_mm = std::numeric_limits<double>::infinity();
+  const double T = machine.servo_period_s;
+  for (const AxisLimits& ax : machine.axes)
+    blind_mm = std::min({blind_mm, ax.max_acceleration * T * T / 4.0, ax.max_jerk * T * T * T / 8.0});
+  blind_mm *= tolerances::plan_stationary_blind_share * tolerances::plan_limit_safety;
   std::vector<MovePiece> pieces;
   double lo = 0.0, hi = 0.0;  // range of the stretch caps [mm/s] in the current piece
   for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
     const Cut& at = cuts[k];
     std::vector<CapSpan> stretches;
     int budget = tolerances::plan_span_max_pieces;
-    const PathGeometry g = path_geometry(c, at.u, cuts[k + 1].u);
-    add_stretches(c, at.u, cuts[k + 1].u, g, span_cap(g, feed_mm_s, machine), feed_mm_s, machine, 0, stretches, budget);
+    // the caps are measured without the blind stretches at stationary ends
+    double ua = at.u, ub = cuts[k + 1].u;
+    bool all_blind = false;  // (then its turn is not measured at all: it is next to a stop)
+    if (std::isfinite(blind_mm) && (at.stationary || cuts[k + 1].stationary)) {
+      const double sa = table.s_of_u(ua), sb = table.s_of_u(ub);
+      const double ea = at.stationary ? blind_mm : 0.0, eb = cuts[k + 1].stationary ? blind_mm : 0.0;
+      if (sb - sa > ea + eb) {
+        if (ea > 0.0) ua = std::clamp(table.u_of_s(sa + ea, ua), at.u, cuts[k + 1].u);
+        if (eb > 0.0) ub = std::clamp(table.u_of_s(sb - eb, ub), ua, cuts[k + 1].u);
+      } else {
+        all_blind = true;
+      }
+    }
+    // Next to a stationary point, |C'| below tolerances::plan_noise_speed_relative of its peak
+    // between the cuts is the stationary point's neighbourhood, where the curvature is rounding
+    // noise (elsewhere a small |C'| is only a slow parametrisation, e.g. of a large weight).
+    const double speed_floor =
+        at.stationary || cuts[k + 1].stationary
+            ? tolerances::plan_noise_speed_relative *
+                  peak_parametric_speed(c, at.u, cuts[k + 1].u, tolerances::plan_stationary_search_samples)
+            : 0.0;
+    PathGeometry g = path_geometry(c, ua, ub, tolerances::plan_samples_per_span, speed_floor);
+    if (all_blind) {
+      g.curvature = g.curvature_rate = Vec3::Zero();
+      g.max_kappa = 0.0;
+    }
+    add_stretches(c, ua, ub, g, span_cap(g, feed_mm_s, machine), feed_mm_s, machine, speed_floor, 0, stretches, budget);
+    stretches.front().u0 = at.u;
+    stretches.back().u1 = cuts[k + 1].u;
     for (std::size_t i = 0; i < stretches.size(); ++i) {
       const CapSpan& st = stretches[i];
       if (!pieces.empty()) {

@@ -13,6 +13,9 @@ namespace kontur {
 /// such as a repeated control point, a span of no length). Per span, its ends where they are such
 /// points, and the minima of |C'|^2 on a grid of `samples` intervals, refined by golden section.
 [[nodiscard]] std::vector<double> stationary_points(const Curve& curve, double relative, int samples);
+/// The largest parametric speed |C'| [mm per parameter unit] on a grid of `samples` intervals of
+/// [u0, u1] (at u1, the limit from the left).
+[[nodiscard]] double peak_parametric_speed(const Curve& curve, double u0, double u1, int samples);
 /// Curvature kappa = |C' x C''| / |C'|^3 [1/mm]; 0 where the curve is not regular.
 [[nodiscard]] double curvature(const Derivatives& d) noexcept;
 /// Chord (bow-height) error [mm] of a chord of length `step_mm` [mm] on a circle of radius

@@ -88,8 +88,11 @@ struct PathGeometry {
 };
 
 /// Geometry bounds of a curve between parameters u0 < u1 (inside one span, or sampled per span).
+/// Points where |C'| is at most `speed_floor` [mm per parameter unit] (or tiny against the
+/// stretch's own samples) are stationary: their tangent and curvature are rounding noise and are
+/// not sampled (split_move passes tolerances::plan_stationary_speed_relative times the curve's peak).
 [[nodiscard]] PathGeometry path_geometry(const Curve& curve, double u0, double u1,
-                                         int samples = tolerances::plan_samples_per_span);
+                                         int samples = tolerances::plan_samples_per_span, double speed_floor = 0.0);
 
 /// The speed cap [mm/s] of a stretch: velocity_cap (the feed, the machine's max feed, every axis's
 /// velocity along the tangent; zero if the stretch moves an axis the machine lacks), the

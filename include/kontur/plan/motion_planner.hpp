@@ -33,7 +33,7 @@ struct MovePiece {
 /// Cuts a move into pieces: at every breakpoint where tangent or curvature jump (a junction that
 /// limits the speed), at every stationary point (C' = 0, a cusp: a stop), and between stretches
 /// whose speed caps differ by more than tolerances::plan_piece_cap_ratio (so a short tight bend
-/// slows only itself; a span is cut in two where one part is that much faster than the whole).
+/// slows only itself; a span is cut in four where one quarter is that much faster than the whole).
 [[nodiscard]] std::vector<MovePiece> split_move(const Curve& curve, const ArcLengthTable& table, double feed_mm_s,
                                                 const Machine& machine);
 
