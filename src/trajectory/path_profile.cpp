@@ -1,7 +1,10 @@
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "first_time_covering.hpp"
 #include <kontur/trajectory/path_profile.hpp>
+#include <kontur/tolerances.hpp>
 
 namespace kontur::trajectory {
 
@@ -34,6 +37,18 @@ PathProfile::PathProfile(std::vector<ProfilePhase> phases, double duration_s, co
   d->end = end;
   d->end.a = 0.0;
   d->end.j = 0.0;
+  {
+    const ProfilePhase& p = d->phases.back();
+    const double tau = std::max(0.0, duration_s - p.t0_s);
+    const double natural = p.start.s + p.start.v * tau + 0.5 * p.start.a * tau * tau + p.jerk * tau * tau * tau / 6.0;
+    d->s0 = d->phases.front().start.s;
+    const double want = d->end.s - d->s0, got = natural - d->s0;
+    // (a difference of a few units in the last place is left: the profile then samples exactly as
+    // the S-curve it was made from)
+    const double miss = want > 0.0 && got > 0.0 ? std::abs(want / got - 1.0) : 0.0;
+    if (miss > 64.0 * std::numeric_limits<double>::epsilon() && miss <= tolerances::profile_end_rescale_relative)
+      d->scale = want / got;
+  }
   data_ = std::move(d);
 }
 
@@ -54,6 +69,12 @@ PathState PathProfile::sample(double t) const noexcept {
   out.a = p.start.a + j * tau;
   out.v = p.start.v + p.start.a * tau + 0.5 * j * tau * tau;
   out.s = p.start.s + p.start.v * tau + 0.5 * p.start.a * tau * tau + j * tau * tau * tau / 6.0;
+  if (d.scale != 1.0) {
+    out.s = d.s0 + (out.s - d.s0) * d.scale;
+    out.v *= d.scale;
+    out.a *= d.scale;
+    out.j *= d.scale;
+  }
   // Rounding must not move past the end.
   out.s = std::min(out.s, d.end.s);
   out.v = std::max(out.v, 0.0);

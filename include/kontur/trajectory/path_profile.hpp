@@ -49,6 +49,11 @@ class PathProfile {
     std::vector<ProfilePhase> phases;
     double duration_s = 0.0;
     PathState end;
+    // The phases' distance, run to duration_s, differs from end.s by the rounding of their solution
+    // (about 1e-13 of it); sample() maps it onto end.s by s0 + (s - s0) * scale (s0: the start),
+    // so the motion arrives smoothly instead of being clamped a period early (a jerk of
+    // 1e-13 mm / T^3 at a stop).
+    double s0 = 0.0, scale = 1.0;
   };
   std::shared_ptr<const Data> data_;
 };
