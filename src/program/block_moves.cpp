@@ -4,6 +4,8 @@
 #include <kontur/geometry/length.hpp>
 #include <kontur/geometry/span_polynomial.hpp>
 #include <kontur/program/block_moves.hpp>
+#include <kontur/tolerances.hpp>
+#include <algorithm>
 #include <memory>
 #include <type_traits>
 #include <variant>
@@ -11,7 +13,23 @@
 namespace kontur::program {
 namespace {
 
-// The block's curve as a shared curve for the planner (NURBS as span polynomials: faster).
+// The largest distance [mm] between a NURBS and its span polynomials, at the ends and 8 points
+// of every span: the power basis of a high degree with extreme weights loses digits (a degree-9
+// span with weights 100 and 0.01 ended 4e-8 mm from its last control point).
+double span_polynomial_error_mm(const NurbsCurve& nurbs, const SpanPolynomialCurve& poly) {
+  double worst = 0.0;
+  for (const SpanPolynomial& s : poly.spans())
+    for (int k = 0; k <= 8; ++k) {
+      const double u = k == 8 ? s.u_end : s.u_start + (s.u_end - s.u_start) * k / 8.0;
+      const Vec3 a = k == 8 ? nurbs.derivatives_left(u, 0)[0] : nurbs.point(u);
+      const Vec3 b = k == 8 ? poly.derivatives_left(u, 0)[0] : poly.point(u);
+      worst = std::max(worst, (a - b).norm());
+    }
+  return worst;
+}
+
+// The block's curve as a shared curve for the planner (NURBS as span polynomials: faster, unless
+// they lose more than tolerances::span_polynomial_max_error_mm; then the NURBS itself).
 std::shared_ptr<const Curve> shared_curve(const gcode::Block& b) {
   return std::visit(
       [](const auto& g) -> std::shared_ptr<const Curve> {
@@ -19,7 +37,10 @@ std::shared_ptr<const Curve> shared_curve(const gcode::Block& b) {
         if constexpr (std::is_same_v<G, std::monostate>) {
           return nullptr;
         } else if constexpr (std::is_same_v<G, NurbsCurve>) {
-          return std::make_shared<SpanPolynomialCurve>(g);
+          auto poly = std::make_shared<SpanPolynomialCurve>(g);
+          if (span_polynomial_error_mm(g, *poly) > tolerances::span_polynomial_max_error_mm)
+            return std::make_shared<NurbsCurve>(g);
+          return poly;
         } else {
           return std::make_shared<G>(g);
         }
