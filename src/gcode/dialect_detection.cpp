@@ -128,7 +128,10 @@ DialectChoice detect_dialect(std::string_view name, std::string_view text) {
   static const std::regex linuxcnc_comment_re(R"(^\((DEBUG|PRINT|LOGOPEN|PROBEOPEN),)");
   // After G80, axis words without a motion code: a Fanuc keeps G0 / G1 (LinuxCNC refuses them).
   static const std::regex g80_re(R"((^|[^0-9.])G0*80(?![0-9.]))");
-  static const std::regex group01_re(R"((^|[^0-9.])G0*[0-3](?![0-9.]))");
+  // (any motion code: the lines, arcs, splines, threads, probes and cycles; the point lines of a
+  // G5.2 block and the knot lines of a G6.2 curve follow their motion code)
+  static const std::regex group01_re(
+      R"((^|[^0-9.])G0*([0-3]|5(\.[1-3])?|6\.2|33(\.1)?|38\.[2-5]|7[346]|8[1-9])(?![0-9.]))");
   static const std::regex axis_words_re(R"(^\s*(N\d+\s*)?[XYZ]\s*[-+.0-9])");
   // Mach3's G50 (scaling off) and G70 / G71 (inch / mm) in a block of modal codes only (LinuxCNC
   // has no G50, and its G70 / G71 are lathe cycles with P Q D words; a Fanuc lathe's G50 takes S X Z).
