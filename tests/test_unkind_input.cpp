@@ -5,11 +5,13 @@
 // larger as jerk.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <kontur/geometry/conic_through_points.hpp>
 #include <kontur/geometry/differential.hpp>
 #include <kontur/geometry/nurbs.hpp>
+#include <kontur/machine.hpp>
 #include <kontur/pipeline.hpp>
 #include <string>
 
@@ -34,6 +36,35 @@ Outcome run_program(const std::string& name, const std::string& body, double per
   Outcome o{pipeline.run(path.string()), text};
   std::filesystem::remove(path);
   return o;
+}
+
+// Runs a whole program (`text`) on the machine of `machine_toml` (both written to temporary files).
+RunResult run_on_machine(const std::string& name, const std::string& machine_toml, const std::string& text) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const auto program = dir / ("kontur_unkind_" + name + ".ngc");
+  const auto machine = dir / ("kontur_unkind_" + name + ".toml");
+  std::ofstream(program) << text;
+  std::ofstream(machine) << machine_toml;
+  Pipeline pipeline(read_machine(machine));
+  RunResult r = pipeline.run(program.string());
+  std::filesystem::remove(program);
+  std::filesystem::remove(machine);
+  return r;
+}
+
+// A machine of the property test: one period, chord tolerance and X Y Z limits (v [mm/s], a
+// [mm/s^2], j [mm/s^3]).
+std::string machine_toml(double period_s, double chord_mm, const std::array<std::array<double, 3>, 3>& vaj) {
+  std::string t = "name = \"unkind\"\nmax_feed_mm_min = 60000\nrapid_feed_mm_min = 60000\n";
+  t += "chord_tolerance_mm = " + std::to_string(chord_mm) + "\npath_tolerance_mm = 0.01\n";
+  t += "servo_period_s = " + std::to_string(period_s) + "\n";
+  const char* names[] = {"X", "Y", "Z"};
+  for (int i = 0; i < 3; ++i) {
+    const auto& l = vaj[static_cast<std::size_t>(i)];
+    t += std::string("[axes.") + names[i] + "]\nmax_velocity = " + std::to_string(l[0]) +
+         "\nmax_acceleration = " + std::to_string(l[1]) + "\nmax_jerk = " + std::to_string(l[2]) + "\n";
+  }
+  return t;
 }
 
 // Passes on both periods, and takes at most `max_time_s` [s] (no crawl at a speed of 1e-27 mm/s).
@@ -92,6 +123,98 @@ TEST(UnkindInput, NurbsWithWeightsFromOneHundredthToOneHundredRunsAtItsTrueCurva
   // took 2,245 s at 0.001 mm/s: one speed cap for the whole span, set by its sharpest point
   expect_runs_within_limits("weights", "G6.2 P4 K0 X0 Y0 Z0 R100\nK0 X0 Y-1 Z0 R0.01\nK0 X1 Y1 Z0 R1\nK0 X1 Y2 Z0 R1\nK1\nK1\nK1\nK1\n",
                             2.0);
+}
+
+TEST(UnkindInput, TinyRationalNurbsFarFromTheOriginDoesNotHang) {  // case 5
+  expect_runs_within_limits("case5", "G0 X-2562 Y-1862\nG5.2 X-2562.001 Y-1862.002 P1 L3\nX-2562.003 Y-1862.001 P10\n"
+                            "X-2562.004 Y-1862.003 P0.1\nG5.3\n", 30.0);  // (19 s of them the rapid there)
+}
+
+TEST(UnkindInput, PeckDrillingCycleGetsNoFalseAlarm) {  // case 12
+  expect_runs_within_limits("case12", "F427\nG99 G83 X1 Y1 Z-0.1 R0.1 Q0.05\n", 10.0);
+}
+
+TEST(UnkindInput, HundredTurnArcGetsNoFalseChordAlarm) {  // case 13
+  expect_runs_within_limits("case13", "F12000\nG2 X0 Y0 I500 J0 P100\nG1 X0 Y100\n", 2000.0);
+}
+
+TEST(UnkindInput, DwellAfterAMoveShorterThanAPeriodIsOnThePath) {  // case 14
+  expect_runs_within_limits("case14", "G1 X0.0001\nG4 P1\nG1 X1\n", 5.0);
+}
+
+TEST(UnkindInput, ZeroLengthInverseTimeBlockWithItsOwnFeedIsAccepted) {  // case 15
+  const auto path = std::filesystem::temp_directory_path() / "kontur_unkind_case15.ngc";
+  std::ofstream(path) << "G21 G90 G17 G93\nG1 X1 F10\nG1 X1 F10\nM2\n";
+  Pipeline pipeline(default_machine());
+  const RunResult r = pipeline.run(path.string());
+  std::filesystem::remove(path);
+  EXPECT_TRUE(r.passed) << r.summary_json.substr(0, 2000);
+}
+
+// Found by the property test (tests/property), each on the machine of its case.
+
+TEST(UnkindInput, DegreeFourNurbsEndingOnARepeatedPointDoesNotCrawl) {  // seed 16: 9,806 s
+  const RunResult r = run_on_machine(
+      "seed16", machine_toml(1e-3, 0.0001135, {{{4.767, 11.502, 11034.3}, {12.7967, 61.664, 62923.5}, {27.5666, 68.921, 72908}}}),
+      "G21 G90 G94 G17\nG0 X27.773339 Y13.712905 Z-13.182059\nG6.2 P5 K0 X27.773339 Y13.712905 Z-13.182059 R11.088254 "
+      "F6.094856\nK0 X27.766333 Y13.684925 Z-13.197711\nK0 X27.782432 Y13.667662 Z-13.216339 R0.023068\n"
+      "K0 X27.797073 Y13.672982 Z-13.206328 R0.701952\nK0 X27.806648 Y13.660904 Z-13.237888 R1.979301\n"
+      "K7.592591 X27.833464 Y13.625919 Z-13.269631\nK7.592591 X27.813063 Y13.604192 Z-13.288832 R0.042783\n"
+      "K33.562658 X27.769284 Y13.579936 Z-13.308839\nK35.97097 X27.769284 Y13.579936 Z-13.308839\n"
+      "K44.891563\nK44.891563\nK44.891563\nK44.891563\nK44.891563\nM2\n");
+  EXPECT_TRUE(r.passed) << r.summary_json.substr(0, 2000);
+  EXPECT_LE(r.total_time_s, 20.0);  // 0.22 mm at 0.1 mm/s
+}
+
+TEST(UnkindInput, SpanTightAtBothEndsSlowsOnlyAtItsEnds) {  // seed 159: 620 s
+  const RunResult r = run_on_machine(
+      "seed159", machine_toml(4e-3, 0.0061254, {{{73.5321, 817.463, 335696.5}, {4.2148, 9.6, 2057.7}, {73.5321, 817.463, 36925.9}}}),
+      "G21 G90 G94 G17\nG0 X-18.089978 Y-28.452886 Z0\nF12.949525\nG6.2 P5 K0 X-18.089978 Y-28.452886 Z0 R4.869595\n"
+      "K0 X-18.077347 Y-28.608882 Z0 R0.788334\nK0 X-18.162042 Y-28.752111 Z0 R5.065013\n"
+      "K0 X-18.391188 Y-29.17342 Z0 R0.020534\nK0 X-18.282587 Y-28.932227 Z0\nK0.090589 X-18.282587 Y-28.932227 Z0\n"
+      "K0.530124 X-18.591741 Y-28.336433 Z0\nK0.530124 X-18.167632 Y-28.670407 Z0 R0.024126\n"
+      "K0.602624 X-17.906884 Y-28.095449 Z0\nK0.602624 X-17.649214 Y-28.387311 Z0 R0.179215\n"
+      "K0.602624 X-17.844914 Y-28.464731 Z0 R0.01\nK1\nK1\nK1\nK1\nK1\nM2\n");
+  EXPECT_TRUE(r.passed) << r.summary_json.substr(0, 2000);
+  EXPECT_LE(r.total_time_s, 60.0);  // 2.3 mm at 0.22 mm/s
+}
+
+TEST(UnkindInput, NarrowCurvaturePeakOfAHeavyWeightKeepsTheJerk) {  // seed 229: jerk 3.1x
+  const RunResult r = run_on_machine(
+      "seed229", machine_toml(273e-6, 0.0485032, {{{29.5876, 124.674, 132.7}, {121.3134, 8747.893, 57245.9}, {121.3134, 8747.893, 2851009.1}}}),
+      "G21 G90 G94 G17\nG0 X-2.701025 Y19.847088 Z0\nF3691.2\nG6.2 P3 K-0.604441 X-2.701025 Y19.847088 Z0 R1\n"
+      "K-0.604441 X-2.697735 Y19.836984 Z0 R0.272675\nK-0.604441 X-2.697735 Y19.836984 Z0 R1.543833\n"
+      "K-0.59612 X-2.699723 Y19.803327 Z0\nK-0.58867 X-2.695132 Y19.83079 Z0 R0.145569\n"
+      "K-0.577404 X-2.718021 Y19.794543 Z0 R3.308223\nK-0.573249 X-2.732355 Y19.790164 Z0 R70.745987\n"
+      "K-0.558645 X-2.712877 Y19.766911 Z0 R0.01\nK-0.557352\nK-0.557352\nK-0.557352\nM2\n");
+  EXPECT_TRUE(r.passed) << r.summary_json.substr(0, 2000);
+}
+
+TEST(UnkindInput, RapidOnAnAxisWithAJerkOfFiveArrivesSmoothly) {  // seed 212: jerk 1.10x at the stop
+  const RunResult r = run_on_machine(
+      "seed212", machine_toml(125e-6, 0.0006731, {{{342.1867, 16.599, 174.7}, {342.1867, 16.599, 44777.2}, {149.3381, 2.268, 4.7}}}),
+      "G21 G90 G94 G17\nG0 Z1\nM2\n");
+  EXPECT_TRUE(r.passed) << r.summary_json.substr(0, 2000);
+}
+
+TEST(UnkindInput, DegreeNineBezierWithExtremeWeightsEndsOnItsLastPoint) {  // seed 397: 4e-8 mm gap
+  expect_runs_within_limits("seed397",
+                            "G0 X-22.853103 Y1.704839 Z0.119892\nG06.2 P10 K0 X-22.853103 Y1.704839 Z0.119892 R1.188096\n"
+                            "K0 X-22.863762 Y1.635527 Z0.119892 R1.313696\nK0 X-22.888709 Y1.693856 Z0.119892\n"
+                            "K0 X-22.852424 Y1.755114 Z0.119892\nK0 X-22.786939 Y1.732046 Z0.119892 R0.812228\n"
+                            "K0 X-22.795665 Y1.689292 Z0.119892 R100\nK0 X-22.851426 Y1.659472 Z0.119892 R1.600068\n"
+                            "K0 X-22.839317 Y1.646164 Z0.119892\nK0 X-22.78506 Y1.658229 Z0.119892 R1.715083\n"
+                            "K0 X-22.797506 Y1.666318 Z0.119892 R0.01\nK1\nK1\nK1\nK1\nK1\nK1\nK1\nK1\nK1\nK1\n"
+                            "G0 Z1.119892\n",
+                            5.0);
+}
+
+TEST(UnkindInput, DegreeOneNurbsTurningAfterASpanOfNoLengthGetsNoFalseAlarm) {  // seeds 1 and 388
+  expect_runs_within_limits("seed1",
+                            "G0 X2.935207 Y-1.735214 Z1.608464\nF31.943517\nG5.2 P2.303222 L2\nX2.841767 Y-1.918322 P1\n"
+                            "X2.841767 Y-1.918322 P0.697284\nX2.778923 Y-1.892453 P30.167944\nX2.72891 Y-1.731255 P3.103496\n"
+                            "G5.3\n",
+                            5.0);
 }
 
 TEST(StationaryPoints, FindsACuspInsideASpanAndARepeatedEndPoint) {
