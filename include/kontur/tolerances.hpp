@@ -229,6 +229,9 @@ inline constexpr int plan_stationary_search_samples = 64;
 /// Far below plan_stationary_speed_relative: a large weight makes |C'| that small on a regular,
 /// tightly turning stretch, whose curvature must be kept.
 inline constexpr double plan_noise_speed_relative = 1e-9;
+/// ... and within this many times the distance a stationary point's evaluation wanders 2^-48 ..
+/// 2^-40 of the way from it (where the curve cannot have moved but by rounding).
+inline constexpr double plan_stationary_noise_factor = 10.0;
 /// Around a stationary point the curvature grows without bound (a cusp's is about 1 / sqrt(s)),
 /// while the motion stops there: the stretch within this share of what the setpoints can show is
 /// left out of the speed caps. The share is of the smallest of a T^2 / 4 and j T^3 / 8 over the

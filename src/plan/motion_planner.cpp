@@ -89,18 +89,36 @@ std::vector<MovePiece> split_move(const Curve& c, const ArcLengthTable& table, d
     const Cut& at = cuts[k];
     std::vector<CapSpan> stretches;
     int budget = tolerances::plan_span_max_pieces;
-    // the caps are measured without the blind stretches at stationary ends
+    // the caps are measured without the blind stretches at stationary ends: the points within
+    // blind_mm of the stationary point, or within plan_stationary_noise_factor times the distance
+    // its evaluation wanders 2^-48 .. 2^-40 of the way from it (where the curve cannot have moved
+    // but by rounding: a spline ending on a repeated point with weights 68 and 0.027 wandered 1e-13
+    // mm there, with curvatures of 1e21 / mm), found by doubling a parameter step from the point
+    // (not by the arc-length table, whose rounding there is of the same order)
     double ua = at.u, ub = cuts[k + 1].u;
-    bool all_blind = false;  // (then its turn is not measured at all: it is next to a stop)
-    if (std::isfinite(blind_mm) && (at.stationary || cuts[k + 1].stationary)) {
-      const double sa = table.s_of_u(ua), sb = table.s_of_u(ub);
-      const double ea = at.stationary ? blind_mm : 0.0, eb = cuts[k + 1].stationary ? blind_mm : 0.0;
-      if (sb - sa > ea + eb) {
-        if (ea > 0.0) ua = std::clamp(table.u_of_s(sa + ea, ua), at.u, cuts[k + 1].u);
-        if (eb > 0.0) ub = std::clamp(table.u_of_s(sb - eb, ub), ua, cuts[k + 1].u);
-      } else {
-        all_blind = true;
+    const auto blind_end = [&](double from, double toward) {
+      const Vec3 stop = c.point(from);
+      const double range = toward - from;
+      double noise_mm = 0.0;
+      for (const int e : {-48, -44, -40}) noise_mm = std::max(noise_mm, (c.point(from + std::ldexp(range, e)) - stop).norm());
+      const double radius_mm = std::max(blind_mm, tolerances::plan_stationary_noise_factor * noise_mm);
+      double last = from;
+      for (int e = -60; e <= 0; ++e) {
+        const double u = from + std::ldexp(range, e);
+        if (!((c.point(u) - stop).norm() <= radius_mm)) break;
+        last = u;
       }
+      return last;
+    };
+    if (std::isfinite(blind_mm)) {
+      if (at.stationary) ua = blind_end(at.u, cuts[k + 1].u);
+      if (cuts[k + 1].stationary) ub = blind_end(cuts[k + 1].u, at.u);
+    }
+    // (then its turn is not measured at all: it lies within blind_mm of a stop)
+    const bool all_blind = !(ua < ub);
+    if (all_blind) {
+      ua = at.u;
+      ub = cuts[k + 1].u;
     }
     // Next to a stationary point, |C'| below tolerances::plan_noise_speed_relative of its peak
     // between the cuts is the stationary point's neighbourhood, where the curvature is rounding
