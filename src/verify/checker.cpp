@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <kontur/geometry/differential.hpp>
 #include <kontur/tolerances.hpp>
@@ -21,9 +22,10 @@ double refine(const Curve& c, const Vec3& p, double a, double b, double u) {
     // (rounding can make f exactly zero: u is then the foot of the normal, unless it is a farthest
     // point or C' vanishes there)
     if (f == 0.0 && fp > 0.0 && d[1].squaredNorm() > 0.0) return u;
-    // (C' = 0 to rounding, against C'' over the bracket: u is a stationary point, which says
-    // nothing of where the foot is: halve the bracket)
-    if (d[1].norm() <= 1e-9 * d[2].norm() * (b - a) || d[1].squaredNorm() == 0.0) {
+    // (C' = 0 to rounding: over the bracket the curve moves, to first order, a millionth of the
+    // distance to p or less; u is a stationary point, which says nothing of where the foot is:
+    // halve the bracket)
+    if (d[1].norm() * (b - a) <= 1e-6 * r.norm() || d[1].squaredNorm() == 0.0) {
       const double mid = 0.5 * (a + b);
       if (mid == u || mid == a || mid == b) return u;
       u = mid;
@@ -83,24 +85,22 @@ double project(const Curve& c, const std::vector<double>& bp, const Vec3& p, dou
     if (dist2(u_forward) <= 1e-24) return u_forward;  // within 1e-12 mm
   }
   const double u_local = refine_spans(std::max(c.u_min(), u_hint - h), u_hint, u_hint);
-  // Every span's nearest of 17 samples, refined within the span: a candidate per span (the
-  // nearest of the whole curve may be in a span of no length or beyond a corner the forward
-  // refinement does not reach).
+  // Every local minimum of the distance over 17 samples of every span, refined within the span: a
+  // candidate each (the nearest of the whole curve may be in a span of no length, beyond a corner
+  // the forward refinement does not reach, or on a branch of a loop that passes close by).
   std::vector<double> candidates = {u_forward, u_local};
+  std::array<double, 17> us{}, ds{};
   for (std::size_t i = 0; i + 1 < bp.size(); ++i) {
-    const double hs = (bp[i + 1] - bp[i]) / 16.0;
-    double best_u = bp[i], best_d = dist2(best_u);
-    for (int k = 1; k <= 16; ++k) {
-      const double u = k == 16 ? bp[i + 1] : bp[i] + hs * k;
-      const double d = dist2(u);
-      if (d < best_d) {
-        best_d = d;
-        best_u = u;
-      }
+    for (std::size_t k = 0; k < 17; ++k) {
+      us[k] = k == 16 ? bp[i + 1] : bp[i] + (bp[i + 1] - bp[i]) * static_cast<double>(k) / 16.0;
+      ds[k] = dist2(us[k]);
     }
-    const double lo = std::max(bp[i], best_u - hs), hi = std::min(bp[i + 1], best_u + hs);
-    // (from inside the span: at its right end the derivatives are the next span's)
-    candidates.push_back(refine(c, p, lo, hi, best_u < bp[i + 1] ? best_u : 0.5 * (lo + hi)));
+    for (std::size_t k = 0; k < 17; ++k) {
+      if ((k > 0 && ds[k] > ds[k - 1]) || (k < 16 && ds[k] > ds[k + 1])) continue;
+      const double lo = us[k > 0 ? k - 1 : 0], hi = us[k < 16 ? k + 1 : 16];
+      // (from inside the span: at its right end the derivatives are the next span's)
+      candidates.push_back(refine(c, p, lo, hi, k < 16 ? us[k] : 0.5 * (lo + hi)));
+    }
   }
   // Of the points within 1e-9 mm of the nearest, the first one ahead of u_hint: where the path
   // passes a place twice (a multi-turn arc, a cusp that turns back along itself), the other pass
