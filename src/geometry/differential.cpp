@@ -1,4 +1,5 @@
 #include <kontur/geometry/differential.hpp>
+#include <kontur/geometry/golden_section.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -107,28 +108,10 @@ std::vector<double> stationary_points(const Curve& curve, double relative, int s
     if (fs[0] <= limit) add(ut[0]);
     for (std::size_t k = 1; k + 1 < n; ++k) {
       if (!(fs[k] <= fs[k - 1] && fs[k] < fs[k + 1])) continue;
-      // golden section for the minimum of |C'|^2 in [u_{k-1}, u_{k+1}]
-      constexpr double g = 0.6180339887498949;
-      double a = ut[k - 1], b = ut[k + 1];
-      double x1 = b - g * (b - a), x2 = a + g * (b - a);
-      double f1 = speed2(x1, false), f2 = speed2(x2, false);
-      for (int it = 0; it < 100; ++it) {
-        if (f1 <= f2) {
-          b = x2;
-          x2 = x1;
-          f2 = f1;
-          x1 = b - g * (b - a);
-          f1 = speed2(x1, false);
-        } else {
-          a = x1;
-          x1 = x2;
-          f1 = f2;
-          x2 = a + g * (b - a);
-          f2 = speed2(x2, false);
-        }
-        if (!(a < x1 && x1 < x2 && x2 < b)) break;  // the bracket is down to rounding
-      }
-      if (std::min(f1, f2) <= limit) add(f1 <= f2 ? x1 : x2);
+      // the minimum of |C'|^2 in [u_{k-1}, u_{k+1}]
+      const auto [u_min, f_min] =
+          golden_section_minimum([&](double u) { return speed2(u, false); }, ut[k - 1], ut[k + 1], 100);
+      if (f_min <= limit) add(u_min);
     }
     if (fs[n - 1] <= limit) add(ut[n - 1]);
   }

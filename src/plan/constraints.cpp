@@ -1,6 +1,7 @@
 // The constraints of a path on a machine (constraints.hpp): shared by the online planner and the
 // time-optimal reference.
 #include <kontur/geometry/differential.hpp>
+#include <kontur/geometry/golden_section.hpp>
 #include <kontur/interpolate/curve_interpolator.hpp>
 #include <kontur/plan/constraints.hpp>
 
@@ -175,36 +176,16 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
         const double low = std::min(left < 0.0 ? kInf : left, right < 0.0 ? kInf : right);
         if (!(v[k] > tolerances::plan_peak_refine_ratio * low)) continue;
         const bool of_rate = f == &rate;
-        const auto value = [&](double u, Derivatives& d) {
-          d = c.derivatives(u, 3);
-          if (!regular(d)) return -1.0;
+        // (the maximum of the value: the minimum of its negative; -1 at a point that is not regular)
+        const auto negative_value = [&](double u) {
+          const Derivatives d = c.derivatives(u, 3);
+          if (!regular(d)) return 1.0;
           const auto [kv, kr] = curvature_vector_and_rate(d);
-          return of_rate ? kr.norm() : kv.norm();
+          return -(of_rate ? kr.norm() : kv.norm());
         };
-        constexpr double g = 0.6180339887498949;
-        double a = us[k > 0 ? k - 1 : k], b = us[k + 1 < n ? k + 1 : k];
-        double x1 = b - g * (b - a), x2 = a + g * (b - a);
-        Derivatives d1, d2;
-        double f1 = value(x1, d1), f2 = value(x2, d2);
-        for (int it = 0; it < 60 && a < x1 && x1 < x2 && x2 < b; ++it) {
-          if (f1 >= f2) {
-            b = x2;
-            x2 = x1;
-            f2 = f1;
-            d2 = d1;
-            x1 = b - g * (b - a);
-            f1 = value(x1, d1);
-          } else {
-            a = x1;
-            x1 = x2;
-            f1 = f2;
-            d1 = d2;
-            x2 = a + g * (b - a);
-            f2 = value(x2, d2);
-          }
-        }
-        if (f1 >= 0.0) add(d1, hi, false);
-        if (f2 >= 0.0) add(d2, hi, false);
+        const auto [u_peak, f_peak] =
+            golden_section_minimum(negative_value, us[k > 0 ? k - 1 : k], us[k + 1 < n ? k + 1 : k], 60);
+        if (f_peak <= 0.0) add(c.derivatives(u_peak, 3), hi, false);
       }
     }
     // Constant quantities (a line's tangent, a circle's curvature) are exact; the others are
