@@ -17,7 +17,8 @@ machine.ini) into a temporary folder and `kontur run program --machine machine -
                an axis velocity, acceleration or jerk above the limit (Kontur's check missed it);
     CRASH      a signal, exit 3 (internal error) or any other code, exit 1 without a message, NaN or
                inf in the setpoints, a missing or unreadable summary;
-    HANG       still running after --timeout seconds (killed).
+    HANG       still running after --timeout seconds (killed), or a crawl: a passed run whose
+               motion takes over 10 times the generator's estimate plus 30 s.
 
 Notes (not failures) are printed too: a program not read as LinuxCNC (dialect detection).
 
@@ -186,9 +187,10 @@ def run_case(seed, kontur, timeout, workdir=None, own=True, program_text=None):
         worst = None
     res["own"] = worst
     est = case.get("estimated_time_s", 0)
+    crawl = None
     if s.get("total_time_s", 0) > 10 * est + 30:
-        res["notes"].append(f"crawl: {s.get('total_time_s')} s of motion against ~{est:.1f} s estimated "
-                            f"({s.get('setpoints')} setpoints); slowest block {slowest_block(s)}")
+        crawl = (f"crawl: {s.get('total_time_s')} s of motion against ~{est:.1f} s estimated "
+                 f"({s.get('setpoints')} setpoints); slowest block {slowest_block(s)}")
     if rc == 4 or not s.get("passed", False):
         fails = s.get("failures", [])
         # the block where the failing quantity is worst, for the kind
@@ -207,6 +209,10 @@ def run_case(seed, kontur, timeout, workdir=None, own=True, program_text=None):
         res.update(cls="VIOLATION", kind=f"own check: {q} of axis {ax} above the limit (Kontur's check passed)",
                    detail=f"{len(own_viol)} setpoints; worst {q} of axis {ax} at setpoint {k}: {r:.4f} of the limit; "
                           f"Kontur reports {q} ratio {s.get('max_' + q + '_ratio')}")
+        return res
+    if crawl:
+        # a motion that crawls (at 1e-16 mm/s near a cusp, say) is a hang to the user
+        res.update(cls="HANG", kind="crawl: motion far longer than the estimate", detail=crawl)
         return res
     res.update(cls="PASS", kind="PASS", detail="")
     return res
