@@ -59,13 +59,16 @@ double project(const Curve& c, const std::vector<double>& bp, const Vec3& p, dou
     const auto i = static_cast<std::size_t>(std::max<std::ptrdiff_t>(it - bp.begin() - 1, 0));
     return std::min(i, bp.size() - 2);
   };
-  // Newton in [lo, hi] split at the breakpoints inside; the nearest result (the first on a tie)
+  // Newton in [lo, hi] split at the breakpoints inside; the nearest result (the first on a tie,
+  // `start` if none is nearer)
   const auto refine_spans = [&](double lo, double hi, double start) {
     double best = start, best_d = dist2(start);
     for (std::size_t i = span_of(lo); i + 1 < bp.size() && bp[i] <= hi; ++i) {
       const double a = std::max(lo, bp[i]), b = std::min(hi, bp[i + 1]);
       if (!(a <= b)) continue;
-      const double u = refine(c, p, a, b, std::clamp(start, a, b) == start ? start : 0.5 * (a + b));
+      // (from `start`, or from the start of a later span; the middle of an earlier one: at its right
+      // end the derivatives are the next span's)
+      const double u = refine(c, p, a, b, start < a ? a : (start > b ? 0.5 * (a + b) : start));
       const double d = dist2(u);
       if (d < best_d) {
         best_d = d;
@@ -75,15 +78,8 @@ double project(const Curve& c, const std::vector<double>& bp, const Vec3& p, dou
     return best;
   };
   // forward, within the span of u_hint and the next ones up to 64 h ahead
-  const double forward_end = std::min(c.u_max(), u_hint + 64 * h);
-  double u_forward = u_hint;
-  for (std::size_t i = span_of(u_hint); i + 1 < bp.size() && bp[i] <= forward_end; ++i) {
-    const double a = std::max(u_hint, bp[i]), b = std::min(forward_end, bp[i + 1]);
-    if (!(a <= b)) continue;
-    const double u = refine(c, p, a, b, a);
-    if (dist2(u) < dist2(u_forward)) u_forward = u;
-    if (dist2(u_forward) <= 1e-24) return u_forward;  // within 1e-12 mm
-  }
+  const double u_forward = refine_spans(u_hint, std::min(c.u_max(), u_hint + 64 * h), u_hint);
+  if (dist2(u_forward) <= 1e-24) return u_forward;  // within 1e-12 mm
   const double u_local = refine_spans(std::max(c.u_min(), u_hint - h), u_hint, u_hint);
   // Every local minimum of the distance over 17 samples of every span, refined within the span: a
   // candidate each (the nearest of the whole curve may be in a span of no length, beyond a corner
@@ -111,11 +107,10 @@ double project(const Curve& c, const std::vector<double>& bp, const Vec3& p, dou
   for (double u : candidates)
     if (u >= u_hint && std::sqrt(dist2(u)) <= nearest + 1e-9 && !(u >= chosen)) chosen = u;
   if (chosen == chosen) return chosen;
-  // (none ahead: the nearest, the local one on a tie)
+  // (none ahead: the local one if it is as near, else the nearest)
   if (std::sqrt(dist2(u_local)) <= nearest + 1e-9) return u_local;
-  for (double u : candidates)
-    if (std::sqrt(dist2(u)) <= nearest) return u;
-  return u_local;
+  return *std::min_element(candidates.begin(), candidates.end(),
+                           [&](double a, double b) { return dist2(a) < dist2(b); });
 }
 
 // One more deviation [mm] from a programmed shape with its tolerance [mm]: the largest deviation,
@@ -360,11 +355,8 @@ const std::vector<double>& Checker::spans_of(std::size_t i) {
 }
 
 const std::vector<double>& Checker::corners_of(std::size_t i) {
-  if (corners_.size() <= i) {
-    corners_.resize(i + 1);
-    corners_known_.resize(i + 1, false);
-  }
-  if (!corners_known_[i]) {
+  if (corners_.size() <= i) corners_.resize(i + 1);
+  if (!corners_[i]) {
     const Curve& c = *moves_[i].curve;
     std::vector<double> out = stationary_points(c, tolerances::plan_stationary_speed_relative,
                                                 tolerances::plan_stationary_search_samples);
@@ -377,9 +369,8 @@ const std::vector<double>& Checker::corners_of(std::size_t i) {
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
     corners_[i] = std::move(out);
-    corners_known_[i] = true;
   }
-  return corners_[i];
+  return *corners_[i];
 }
 
 std::size_t Checker::match(const Sample& s, const Vec3& p, double& u, double& d) {
@@ -502,27 +493,23 @@ void Checker::add(const Sample& s) {
     if (k >= 2) x_max = std::max(x_max, std::abs(p2[i]));
     if (k >= 3) x_max = std::max(x_max, std::abs(p3[i]));
     const double ulp = std::nextafter(x_max, std::numeric_limits<double>::infinity()) - x_max;
-    if (k >= 1) {
-      const double d = std::abs(p0[i] - p1[i]);
-      const double v = d / T / ax.limits->max_velocity;
-      ax.max_v = std::max(ax.max_v, v);
-      ax.excess_v = std::max(ax.excess_v, std::max(0.0, d - 2.0 * ulp) / T / ax.limits->max_velocity);
-      sm_.velocity_ratio = std::max(sm_.velocity_ratio, v);
-    }
-    if (k >= 2) {
-      const double d = std::abs(p0[i] - 2 * p1[i] + p2[i]);
-      const double a = d / (T * T) / ax.limits->max_acceleration;
-      ax.max_a = std::max(ax.max_a, a);
-      ax.excess_a = std::max(ax.excess_a, std::max(0.0, d - 4.0 * ulp) / (T * T) / ax.limits->max_acceleration);
-      sm_.acceleration_ratio = std::max(sm_.acceleration_ratio, a);
-    }
-    if (k >= 3) {
-      const double d = std::abs(p0[i] - 3 * p1[i] + 3 * p2[i] - p3[i]);
-      const double j = d / (T * T * T) / ax.limits->max_jerk;
-      ax.max_j = std::max(ax.max_j, j);
-      ax.excess_j = std::max(ax.excess_j, std::max(0.0, d - 8.0 * ulp) / (T * T * T) / ax.limits->max_jerk);
-      sm_.jerk_ratio = std::max(sm_.jerk_ratio, j);
-    }
+    // a backward difference d [mm] over Tn = T^n against the limit: its ratio, and the ratio less
+    // the `ulps` that rounding the positions alone can make of it
+    const auto measure = [&](double d, double Tn, double ulps, double limit, double& max_ratio, double& max_excess) {
+      const double ratio = d / Tn / limit;
+      max_ratio = std::max(max_ratio, ratio);
+      max_excess = std::max(max_excess, std::max(0.0, d - ulps * ulp) / Tn / limit);
+      return ratio;
+    };
+    if (k >= 1)
+      sm_.velocity_ratio = std::max(sm_.velocity_ratio, measure(std::abs(p0[i] - p1[i]), T, 2.0,
+                                                                ax.limits->max_velocity, ax.max_v, ax.excess_v));
+    if (k >= 2)
+      sm_.acceleration_ratio = std::max(sm_.acceleration_ratio, measure(std::abs(p0[i] - 2 * p1[i] + p2[i]), T * T, 4.0,
+                                                                        ax.limits->max_acceleration, ax.max_a, ax.excess_a));
+    if (k >= 3)
+      sm_.jerk_ratio = std::max(sm_.jerk_ratio, measure(std::abs(p0[i] - 3 * p1[i] + 3 * p2[i] - p3[i]), T * T * T, 8.0,
+                                                        ax.limits->max_jerk, ax.max_j, ax.excess_j));
   }
   double u = 0.0, d = 0.0;
   const std::size_t m = match(s, p, u, d);

@@ -15,6 +15,7 @@
 #include <kontur/program/move.hpp>
 #include <kontur/trajectory/sampler.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -171,8 +172,7 @@ class Checker {
   double t_previous_ = 0.0;
   Vec3 last_point_ = Vec3::Zero();
   std::vector<std::vector<double>> breakpoints_;  // per move, computed once (the projection samples every span)
-  std::vector<std::vector<double>> corners_;     // per move, computed once (corners_of)
-  std::vector<bool> corners_known_;
+  std::vector<std::optional<std::vector<double>>> corners_;  // per move, computed once (corners_of)
   std::unique_ptr<PathIndex> index_;              // built on the first setpoint that needs it
   std::size_t m_ = 0, m_prev_ = 0;
   double u_prev_ = 0.0;
