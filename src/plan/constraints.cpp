@@ -129,35 +129,39 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
     const auto regular = [&](const Derivatives& d) {
       return d[1].norm() > speed_floor && !unit_tangent(d).isZero();
     };
-    const auto add = [&](const Derivatives& d, PathGeometry& g, bool smallest) {
-      const Vec3 at = unit_tangent(d).cwiseAbs();
-      const auto [kv, rate] = curvature_vector_and_rate(d);
-      const Vec3 ak = kv.cwiseAbs(), ar = rate.cwiseAbs();
+    // unit tangent, curvature vector and its rate at a regular point, widening a bound
+    struct Local {
+      Vec3 tangent, curvature, rate;
+    };
+    const auto local = [](const Derivatives& d) {
+      const auto [kv, kr] = curvature_vector_and_rate(d);
+      return Local{unit_tangent(d), kv, kr};
+    };
+    const auto add = [](const Local& l, PathGeometry& g, bool smallest) {
+      const Vec3 at = l.tangent.cwiseAbs(), ak = l.curvature.cwiseAbs(), ar = l.rate.cwiseAbs();
       if (smallest) {
         g.tangent = g.tangent.cwiseMin(at);
         g.curvature = g.curvature.cwiseMin(ak);
         g.curvature_rate = g.curvature_rate.cwiseMin(ar);
-        g.max_kappa = std::min(g.max_kappa, kv.norm());
+        g.max_kappa = std::min(g.max_kappa, l.curvature.norm());
       } else {
         g.tangent = g.tangent.cwiseMax(at);
         g.curvature = g.curvature.cwiseMax(ak);
         g.curvature_rate = g.curvature_rate.cwiseMax(ar);
-        g.max_kappa = std::max(g.max_kappa, kv.norm());
+        g.max_kappa = std::max(g.max_kappa, l.curvature.norm());
       }
     };
     // |K| and |dK/ds| of each regular sample (-1: not regular)
     std::vector<double> kappa(n, -1.0), rate(n, -1.0);
     for (std::size_t k = 0; k < n; ++k) {
-      const Derivatives& d = ds[k];
-      if (!regular(d)) continue;
-      const Vec3 t = unit_tangent(d);
-      if (!t_before.isZero()) max_turn = std::max(max_turn, (t - t_before).norm());
-      t_before = t;
-      add(d, hi, false);
-      add(d, lo, true);
-      const auto [kv, kr] = curvature_vector_and_rate(d);
-      kappa[k] = kv.norm();
-      rate[k] = kr.norm();
+      if (!regular(ds[k])) continue;
+      const Local l = local(ds[k]);
+      if (!t_before.isZero()) max_turn = std::max(max_turn, (l.tangent - t_before).norm());
+      t_before = l.tangent;
+      add(l, hi, false);
+      add(l, lo, true);
+      kappa[k] = l.curvature.norm();
+      rate[k] = l.rate.norm();
     }
     if (max_turn > 0.2 && samples < 4096) {
       samples *= 4;
@@ -180,12 +184,12 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
         const auto negative_value = [&](double u) {
           const Derivatives d = c.derivatives(u, 3);
           if (!regular(d)) return 1.0;
-          const auto [kv, kr] = curvature_vector_and_rate(d);
-          return -(of_rate ? kr.norm() : kv.norm());
+          const Local l = local(d);
+          return -(of_rate ? l.rate.norm() : l.curvature.norm());
         };
         const auto [u_peak, f_peak] =
             golden_section_minimum(negative_value, us[k > 0 ? k - 1 : k], us[k + 1 < n ? k + 1 : k], 60);
-        if (f_peak <= 0.0) add(c.derivatives(u_peak, 3), hi, false);
+        if (f_peak <= 0.0) add(local(c.derivatives(u_peak, 3)), hi, false);
       }
     }
     // Constant quantities (a line's tangent, a circle's curvature) are exact; the others are
