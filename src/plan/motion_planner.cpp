@@ -1,5 +1,5 @@
-#include <array>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <kontur/geometry/differential.hpp>
 #include <kontur/plan/chain_profile.hpp>
@@ -59,6 +59,37 @@ void add_stretches(const Curve& c, double u0, double u1, const PathGeometry& g, 
   out.push_back({u0, u1, g, cap});
 }
 
+// The stretch next to a stationary point that no setpoint can show [mm] (tolerances.hpp:
+// plan_stationary_blind_share of the smallest a T^2 / 4 and j T^3 / 8, times plan_limit_safety).
+double stationary_blind_mm(const Machine& machine) {
+  double blind_mm = std::numeric_limits<double>::infinity();
+  const double T = machine.servo_period_s;
+  for (const AxisLimits& ax : machine.axes)
+    blind_mm = std::min({blind_mm, ax.max_acceleration * T * T / 4.0, ax.max_jerk * T * T * T / 8.0});
+  return blind_mm * tolerances::plan_stationary_blind_share * tolerances::plan_limit_safety;
+}
+
+// The parameter between `from` (a stationary point) and `toward` up to which the curve stays
+// within blind_mm of the point, or within plan_stationary_noise_factor times the distance its
+// evaluation wanders 2^-48 .. 2^-40 of the way from it (where the curve cannot have moved but by
+// rounding: a spline ending on a repeated point with weights 68 and 0.027 wandered 1e-13 mm there,
+// with curvatures of 1e21 / mm). Found by doubling a parameter step from the point, not by the
+// arc-length table, whose rounding there is of the same order.
+double blind_boundary(const Curve& c, double from, double toward, double blind_mm) {
+  const Vec3 stop = c.point(from);
+  const double range = toward - from;
+  double noise_mm = 0.0;
+  for (const int e : {-48, -44, -40}) noise_mm = std::max(noise_mm, (c.point(from + std::ldexp(range, e)) - stop).norm());
+  const double radius_mm = std::max(blind_mm, tolerances::plan_stationary_noise_factor * noise_mm);
+  double last = from;
+  for (int e = -60; e <= 0; ++e) {
+    const double u = from + std::ldexp(range, e);
+    if (!((c.point(u) - stop).norm() <= radius_mm)) break;
+    last = u;
+  }
+  return last;
+}
+
 }  // namespace
 
 std::vector<MovePiece> split_move(const Curve& c, const ArcLengthTable& table, double feed_mm_s,
@@ -77,42 +108,18 @@ std::vector<MovePiece> split_move(const Curve& c, const ArcLengthTable& table, d
     if (at != cuts.end() && at->u == u) at->stationary = true;
     else cuts.insert(at, {u, false, true});
   }
-  // The stretch next to a stationary point that no setpoint can show [mm] (tolerances.hpp).
-  double blind_mm = std::numeric_limits<double>::infinity();
-  const double T = machine.servo_period_s;
-  for (const AxisLimits& ax : machine.axes)
-    blind_mm = std::min({blind_mm, ax.max_acceleration * T * T / 4.0, ax.max_jerk * T * T * T / 8.0});
-  blind_mm *= tolerances::plan_stationary_blind_share * tolerances::plan_limit_safety;
+  const double blind_mm = stationary_blind_mm(machine);
   std::vector<MovePiece> pieces;
   double lo = 0.0, hi = 0.0;  // range of the stretch caps [mm/s] in the current piece
   for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
     const Cut& at = cuts[k];
     std::vector<CapSpan> stretches;
     int budget = tolerances::plan_span_max_pieces;
-    // the caps are measured without the blind stretches at stationary ends: the points within
-    // blind_mm of the stationary point, or within plan_stationary_noise_factor times the distance
-    // its evaluation wanders 2^-48 .. 2^-40 of the way from it (where the curve cannot have moved
-    // but by rounding: a spline ending on a repeated point with weights 68 and 0.027 wandered 1e-13
-    // mm there, with curvatures of 1e21 / mm), found by doubling a parameter step from the point
-    // (not by the arc-length table, whose rounding there is of the same order)
+    // the caps are measured without the blind stretches at stationary ends
     double ua = at.u, ub = cuts[k + 1].u;
-    const auto blind_end = [&](double from, double toward) {
-      const Vec3 stop = c.point(from);
-      const double range = toward - from;
-      double noise_mm = 0.0;
-      for (const int e : {-48, -44, -40}) noise_mm = std::max(noise_mm, (c.point(from + std::ldexp(range, e)) - stop).norm());
-      const double radius_mm = std::max(blind_mm, tolerances::plan_stationary_noise_factor * noise_mm);
-      double last = from;
-      for (int e = -60; e <= 0; ++e) {
-        const double u = from + std::ldexp(range, e);
-        if (!((c.point(u) - stop).norm() <= radius_mm)) break;
-        last = u;
-      }
-      return last;
-    };
     if (std::isfinite(blind_mm)) {
-      if (at.stationary) ua = blind_end(at.u, cuts[k + 1].u);
-      if (cuts[k + 1].stationary) ub = blind_end(cuts[k + 1].u, at.u);
+      if (at.stationary) ua = blind_boundary(c, at.u, cuts[k + 1].u, blind_mm);
+      if (cuts[k + 1].stationary) ub = blind_boundary(c, cuts[k + 1].u, at.u, blind_mm);
     }
     // (then its turn is not measured at all: it lies within blind_mm of a stop)
     const bool all_blind = !(ua < ub);
