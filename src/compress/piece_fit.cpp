@@ -2,6 +2,7 @@
 #include <kontur/error.hpp>
 #include <kontur/geometry/conic_through_points.hpp>
 #include <kontur/geometry/differential.hpp>
+#include <kontur/geometry/golden_section.hpp>
 #include <kontur/geometry/polyline_fit.hpp>
 #include <kontur/tolerances.hpp>
 
@@ -143,25 +144,10 @@ bool arc_fits(const std::vector<Vec3>& v, std::size_t a, std::size_t b, const Fr
         hi = std::max(hi, tk);
       }
     }
-    constexpr double g = 0.6180339887498949;
-    double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-    double e1 = error(x1), e2 = error(x2);
-    for (int it = 0; it < tolerances::compress_arc_search_steps && e > tol; ++it) {
-      if (e1 <= e2) {
-        hi = x2;
-        x2 = x1;
-        e2 = e1;
-        x1 = hi - g * (hi - lo);
-        e1 = error(x1);
-      } else {
-        lo = x1;
-        x1 = x2;
-        e1 = e2;
-        x2 = lo + g * (hi - lo);
-        e2 = error(x2);
-      }
-      if (e1 < e) { e = e1; t = x1; }
-      if (e2 < e) { e = e2; t = x2; }
+    const auto [t_best, e_best] = golden_section_minimum(error, lo, hi, tolerances::compress_arc_search_steps, tol);
+    if (e_best < e) {
+      e = e_best;
+      t = t_best;
     }
   }
   if (!(e <= tol)) return false;

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <kontur/geometry/corner_blend_curve.hpp>
 #include <kontur/geometry/differential.hpp>
+#include <kontur/geometry/golden_section.hpp>
 #include <kontur/tolerances.hpp>
 
 namespace kontur {
@@ -38,25 +39,10 @@ double corner_deviation(const Curve& c, const Vec3& before, const Vec3& corner, 
       best_k = k;
     }
   }
-  double lo = std::max(c.u_min(), u0 + h * (best_k - 1)), hi = std::min(c.u_max(), u0 + h * (best_k + 1));
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo), f1 = dev(x1), f2 = dev(x2);
-  for (int i = 0; i < 60; ++i) {
-    if (f1 < f2) {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + g * (hi - lo);
-      f2 = dev(x2);
-    } else {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - g * (hi - lo);
-      f1 = dev(x1);
-    }
-  }
-  return std::max({best, f1, f2});
+  const double lo = std::max(c.u_min(), u0 + h * (best_k - 1)), hi = std::min(c.u_max(), u0 + h * (best_k + 1));
+  // (the largest deviation: the least of its negative)
+  const double negative_peak = golden_section_minimum([&](double u) { return -dev(u); }, lo, hi, 60).second;
+  return std::max(best, -negative_peak);
 }
 
 double unit_blend_deviation(const Vec3& t1, const Vec3& t2) {
