@@ -111,6 +111,8 @@ std::vector<MovePiece> split_move(const Curve& c, const ArcLengthTable& table, d
   const double blind_mm = stationary_blind_mm(machine);
   std::vector<MovePiece> pieces;
   double lo = 0.0, hi = 0.0;  // range of the stretch caps [mm/s] in the current piece
+  double piece_mm = 0.0;      // its length [mm]
+  double own_s = 0.0;         // its time at each stretch's own cap [s]
   for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
     const Cut& at = cuts[k];
     std::vector<CapSpan> stretches;
@@ -151,11 +153,19 @@ std::vector<MovePiece> split_move(const Curve& c, const ArcLengthTable& table, d
         if (i == 0 && at.stationary) j = {0.0, tolerances::plan_corner_jerk_share};
         else if (i == 0 && at.breakpoint) j = junction(c.derivatives_left(at.u, 2), c.derivatives(at.u, 2), machine);
         const double new_lo = std::min(lo, st.cap), new_hi = std::max(hi, st.cap);
-        if (j.smooth() && !(new_hi > tolerances::plan_piece_cap_ratio * new_lo)) {
+        // (one piece runs at its smallest cap: merged only where that loses little time, so that
+        // one tight stretch does not slow a long easy one)
+        const double len_mm = table.s_of_u(st.u1) - table.s_of_u(st.u0);
+        const double new_own_s = own_s + (st.cap > 0.0 ? len_mm / st.cap : 0.0);
+        const bool cheap = new_lo > 0.0 && (piece_mm + len_mm) / new_lo <=
+                                               (1.0 + tolerances::plan_piece_merge_time_loss) * new_own_s;
+        if (j.smooth() && !(new_hi > tolerances::plan_piece_cap_ratio * new_lo) && cheap) {
           pieces.back().u1 = st.u1;
           pieces.back().geometry.merge(st.geometry);
           lo = new_lo;
           hi = new_hi;
+          piece_mm += len_mm;
+          own_s = new_own_s;
           continue;
         }
         pieces.back().end = j;
@@ -167,6 +177,8 @@ std::vector<MovePiece> split_move(const Curve& c, const ArcLengthTable& table, d
       p.end = {std::numeric_limits<double>::infinity(), 0.0};
       pieces.push_back(p);
       lo = hi = st.cap;
+      piece_mm = table.s_of_u(st.u1) - table.s_of_u(st.u0);
+      own_s = st.cap > 0.0 ? piece_mm / st.cap : 0.0;
     }
   }
   pieces.front().stationary_start = cuts.front().stationary;
@@ -319,8 +331,15 @@ void MotionPlanner::add_piece(Piece piece) {
   if (!open_.pieces.empty()) {
     const double lo = std::min(open_.min_cap_mm_s, piece.limits.max_velocity),
                  hi = std::max(open_.max_cap_mm_s, piece.limits.max_velocity);
+    // The look-ahead plans a chain with its smallest acceleration: a piece far below the chain's
+    // would slow all of it (a tight stretch of 4 um next to a near-cusp dragged 190 mm of
+    // G6_Curva_Delfino down by a quarter). (Jerk is not looked at: smoothed runs of lines vary in
+    // it, and breaking their chains slows them.)
+    const double a_lo = std::min(open_.pieces.front().limits.max_acceleration, piece.limits.max_acceleration),
+                 a_hi = std::max(open_.pieces.front().limits.max_acceleration, piece.limits.max_acceleration);
     // Pieces of different speeds each keep their own cap; a chain is bounded in length.
-    if (hi > tolerances::plan_piece_cap_ratio * lo || open_.pieces.size() >= tolerances::plan_chain_max_pieces)
+    if (hi > tolerances::plan_piece_cap_ratio * lo || a_hi > tolerances::plan_chain_limit_ratio * a_lo ||
+        open_.pieces.size() >= tolerances::plan_chain_max_pieces)
       close_chain(std::numeric_limits<double>::infinity());
   }
   if (open_.pieces.empty()) {
