@@ -1,4 +1,6 @@
 #include <algorithm>
+#include <cmath>
+#include <kontur/tolerances.hpp>
 #include <kontur/trajectory/sampler.hpp>
 
 namespace kontur::trajectory {
@@ -45,6 +47,18 @@ void Sampler::emit_derivatives(Setpoint& out, const Segment& m, double u, const 
     }
   out.velocity = layout_.from_tool(velocity, rate_v);
   out.acceleration = layout_.from_tool(acceleration, rate_a);
+}
+
+Vec3 Sampler::point_at_s(const Segment& m) const noexcept {
+  // The parameter is a double: where |C'| is large (a NURBS weight of 100 next to 0.01) one ulp of
+  // u moves the point by up to 1e-9 mm, and the steps of u_ then show as jerk. u_after knows how
+  // far the arc length at u_ is from s_ (s_error_, computed from the exact difference of u); the
+  // point is moved back along the tangent by it, which is exact to second order (|K| s_error^2).
+  if (m.tool_still || !(std::abs(s_error_) > tolerances::sample_arc_error_correct_mm)) return m.curve->point(u_);
+  const Derivatives d = m.curve->derivatives(u_, 1);
+  const double speed_u = d[1].norm();  // ds/du
+  if (!(speed_u > 0.0) || !std::isfinite(speed_u)) return d[0];
+  return d[0] - d[1] * (s_error_ / speed_u);
 }
 
 bool Sampler::next(Setpoint& out) noexcept {
@@ -124,7 +138,7 @@ bool Sampler::next(Setpoint& out) noexcept {
   s_ = std::max(s_, s_target);
   t_move_ = t_move;
   ++cycle_;
-  emit(out, clock_.time_s(cycle_), m.curve->point(u_), m.extra_at(st.s >= m.s1_mm - m.s0_mm ? m.s1_mm : s_), st.v, line, move);
+  emit(out, clock_.time_s(cycle_), point_at_s(m), m.extra_at(st.s >= m.s1_mm - m.s0_mm ? m.s1_mm : s_), st.v, line, move);
   if (derivatives_) emit_derivatives(out, m, u_, st);
   return true;
 }

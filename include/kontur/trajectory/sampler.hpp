@@ -73,6 +73,8 @@ class Sampler {
             program::MoveId move) const noexcept;
   // The velocity and acceleration of `out` on segment `m` at parameter u with path state `st`.
   void emit_derivatives(Setpoint& out, const Segment& m, double u, const PathState& st) const noexcept;
+  /// The point at arc length s_ of `m`: C(u_) moved along the tangent by the arc-length error s_error_.
+  [[nodiscard]] Vec3 point_at_s(const Segment& m) const noexcept;
 
   Trajectory* trajectory_;
   ServoClock clock_;  // the period and the times of the cycles
