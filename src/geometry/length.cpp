@@ -153,8 +153,14 @@ void adaptive(const Curve& curve, double a, double b, const GkResult& r, double 
   // the halves as they are, not converged, instead of bisecting noise down to depth 40.
   // A narrow feature that the panels do not resolve yet (a spike of a heavily weighted NURBS)
   // also stops the error from shrinking for a few levels, but its error is of the order of the
-  // panel's value; noise is not: it is also required to be below 1e-8 of the panel's |f|.
-  if (depth >= 4 && left.error + right.error > 0.75 * r.error && r.error <= 1e-8 * r.magnitude) {
+  // panel's value; noise is not: it is also required to be below
+  // tolerances::gauss_kronrod_noise_relative of the panel's |f|. And noise is spread over the
+  // panel, while a feature sits in one half (a spike at a span's end): both halves must carry a
+  // share of the error (gauss_kronrod_noise_spread).
+  const bool spread = std::min(left.error, right.error) >=
+                      tolerances::gauss_kronrod_noise_spread * std::max(left.error, right.error);
+  if (depth >= 4 && left.error + right.error > 0.75 * r.error && spread &&
+      r.error <= tolerances::gauss_kronrod_noise_relative * r.magnitude) {
     left.ok = left.ok || left.error <= abs_density * (mid - a);
     right.ok = right.ok || right.error <= abs_density * (b - mid);
     accept(a, mid, left);
