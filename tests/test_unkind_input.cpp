@@ -209,6 +209,49 @@ TEST(UnkindInput, DegreeNineBezierWithExtremeWeightsEndsOnItsLastPoint) {  // se
                             5.0);
 }
 
+TEST(UnkindInput, DegreeOneNurbsWithWeightsOneHundredAndOneHundredthKeepsTheJerkAtItsCorner) {  // seed 2659: jerk 1.21x
+  // Its span polynomials were evaluated with a noise of 8.6e-12 mm (4 800 ulp): it now runs on the
+  // NURBS itself (tolerances::span_polynomial_max_error_ulps), and the sampler moves each point by
+  // its parameter's arc-length error (Sampler::point_at_s).
+  const RunResult r = run_on_machine(
+      "seed2659", machine_toml(169e-6, 0.0152372, {{{715.886, 41.484, 1630.7}, {1768.5833, 82.675, 203.2}, {1768.5833, 82.675, 4914}}}),
+      "G21 G90 G94 G17\nG0 X-5.1009 Y0.706307 Z0\nF903.741763\n"
+      "G06.2 P2 K0 X-5.1009 Y0.706307 Z0\nK0 X-9.47874 Y5.924106 Z-2.204742\n"
+      "K33.475787 X-12.273026 Y6.732645 Z-3.402706 R100\n"
+      "K40.681567 X-4.97236 Y2.618759 Z6.471799 R0.0118\n"
+      "K48.301377 X-5.171834 Y-1.712254 Z7.191322 R27.235361\n"
+      "K100.972277 X1.40984 Y-2.302612 Z14.959482\n"
+      "K108.253346 X-5.086588 Y0.390053 Z10.359963 R15.911014\n"
+      "K111.290472 X-5.086588 Y0.390053 Z10.359963\nK131.18018\nK131.18018\nM2\n");
+  EXPECT_TRUE(r.passed) << r.summary_json.substr(0, 2000);
+}
+
+TEST(UnkindInput, DegreeNineNurbsWithASpikeOfSpeedAtItsEndHasItsTrueLength) {  // seed 181: jerk 3.4x
+  // Its weights 100, 100, 0.59 put a spike of |C'| in the last 1e-3 of the last span; the length
+  // integration took it for rounding noise, the table's length was 1.4e-9 mm long, and the tool
+  // reached the end early and stood there (tolerances::gauss_kronrod_noise_spread).
+  const RunResult r = run_on_machine(
+      "seed181", machine_toml(180e-6, 0.0009619, {{{6.3318, 51.424, 41202.1}, {37.1574, 179.827, 1098.2}, {37.1574, 179.827, 284.7}}}),
+      "G21 G90 G94 G17 G64\nF83.248877\nG06.2 P10 K-6.673773 X0 Y0 Z0 R0.349627 F2716.504496\n"
+      "K-6.673773 X-1.3358 Y-3.263593 Z2.172689 R1.195139\n"
+      "K-6.673773 X-1.3358 Y-3.263593 Z2.172689 R0.011201\n"
+      "K-6.673773 X-1.342759 Y-5.381782 Z1.578384\n"
+      "K-6.673773 X-4.872094 Y-3.334773 Z-1.325879\n"
+      "K-6.673773 X-4.872094 Y-3.334773 Z-1.325879\n"
+      "K-6.673773 X-3.615156 Y-3.640686 Z-0.117311 R0.135888\n"
+      "K-6.673773 X-1.518277 Y-5.173075 Z0.451802 R0.243121\n"
+      "K-6.673773 X-2.547414 Y-4.580543 Z0.501362\n"
+      "K-6.673773 X-2.547414 Y-4.580543 Z0.501362 R2.305278\n"
+      "K-6.67073 X-1.520601 Y-4.009125 Z0.101169 R20.508173\n"
+      "K-6.667337 X-1.520601 Y-4.009125 Z0.101169 R0.034483\n"
+      "K-6.664157 X-2.918521 Y-6.398468 Z2.534086 R100\n"
+      "K-6.662769 X-2.698343 Y-6.401603 Z0.72678 R100\n"
+      "K-6.655279 X-2.929369 Y-3.003396 Z2.355091 R0.592101\nK-6.653719\nK-6.653719\n"
+      "K-6.653719\nK-6.653719\nK-6.653719\nK-6.653719\nK-6.653719\nK-6.653719\nK-6.653719\n"
+      "K-6.653719\nM2\n");
+  EXPECT_TRUE(r.passed) << r.summary_json.substr(0, 2000);
+}
+
 TEST(UnkindInput, DegreeOneNurbsTurningAfterASpanOfNoLengthGetsNoFalseAlarm) {  // seeds 1 and 388
   expect_runs_within_limits("seed1",
                             "G0 X2.935207 Y-1.735214 Z1.608464\nF31.943517\nG5.2 P2.303222 L2\nX2.841767 Y-1.918322 P1\n"

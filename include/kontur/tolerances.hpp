@@ -11,8 +11,11 @@ namespace kontur::tolerances {
 /// Maximum supported NURBS degree (order 10).
 inline constexpr int max_degree = 9;
 /// A NURBS move is planned on its span polynomials (fast) when they are within this distance of
-/// the NURBS at the ends and 8 points of every span [mm]; otherwise on the NURBS itself.
+/// the NURBS at the ends and 8 points of every span [mm], and within this many ulp of its largest
+/// coordinate; otherwise on the NURBS itself. (The shared NURBS programs lose at most 31 ulp; the
+/// polynomials of extreme weights, hundreds to thousands, and that noise shows as jerk.)
 inline constexpr double span_polynomial_max_error_mm = 1e-11;
+inline constexpr double span_polynomial_max_error_ulps = 64.0;
 /// Largest derivative order evaluated by Curve::derivatives (point, first, second, third).
 inline constexpr int max_derivative = 3;
 /// Two knots closer than this, relative to the parameter range, count as equal when the end
@@ -36,6 +39,15 @@ inline constexpr double min_length_relative = 2e-14;
 inline constexpr double simpson_relative = 1e-10;
 /// Largest number of interval halvings of the Simpson-Runge method (2^24 intervals).
 inline constexpr int simpson_max_halvings = 24;
+/// The adaptive Gauss-Kronrod integration takes a panel's error for the integrand's rounding noise
+/// (and stops bisecting it) where bisection does not reduce it, it is below the first share of the
+/// panel's |C'| scale, and both halves carry at least the second share of the larger half's error:
+/// noise is spread over the panel, an unresolved feature sits in one half. (A NURBS ending with
+/// weights 100, 100, 0.59, degree 9, has a spike of |C'| in the last 1e-3 of its span that the
+/// panels did not resolve for a few levels; taken for noise, its length came out 1.4e-9 mm long,
+/// the tool reached the curve's end early and stood there: jerk 3.4 times the limit.)
+inline constexpr double gauss_kronrod_noise_relative = 1e-8;
+inline constexpr double gauss_kronrod_noise_spread = 0.125;
 /// Deepest bisection of an adaptive Gauss-Kronrod interval.
 inline constexpr int gauss_kronrod_max_depth = 40;
 /// Most evaluations of |C'| spent on one piece between breakpoints (the depth alone allows 2^40
@@ -62,6 +74,11 @@ inline constexpr double step_gauss_agreement = 1e-9;
 inline constexpr double inverse_step_newton_stop = 1e-7;
 /// The same for a Newton step with its second-order term (error of order (1e-5)^3 of the step).
 inline constexpr double inverse_step_second_order_stop = 1e-5;
+/// The sampler moves a setpoint along the tangent by the arc-length error of its parameter
+/// (trajectory::Sampler::point_at_s) where that error exceeds this [mm]: below it the parameter's
+/// rounding cannot show (1e-14 mm is 1e-5 mm/s^3 of jerk at T = 1 ms); above it, near a NURBS
+/// weight of 100, one ulp of u moved the point 1e-10 mm and showed as jerk 1.2 times the limit.
+inline constexpr double sample_arc_error_correct_mm = 1e-14;
 
 // ---- forward differences (seed 002)
 /// Drift of the forward-difference stepper after 10^6 steps, relative to the curve's extent,
