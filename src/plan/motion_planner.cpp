@@ -147,6 +147,8 @@ std::vector<MovePiece> split_move(const Curve& c, const ArcLengthTable& table, d
     stretches.back().u1 = cuts[k + 1].u;
     for (std::size_t i = 0; i < stretches.size(); ++i) {
       const CapSpan& st = stretches[i];
+      const double len_mm = table.s_of_u(st.u1) - table.s_of_u(st.u0);
+      const double len_own_s = st.cap > 0.0 ? len_mm / st.cap : 0.0;  // at its own cap [s]
       if (!pieces.empty()) {
         // inside a span where it was cut: smooth; at a stationary point: a stop
         Junction j{std::numeric_limits<double>::infinity(), 0.0};
@@ -155,8 +157,7 @@ std::vector<MovePiece> split_move(const Curve& c, const ArcLengthTable& table, d
         const double new_lo = std::min(lo, st.cap), new_hi = std::max(hi, st.cap);
         // (one piece runs at its smallest cap: merged only where that loses little time, so that
         // one tight stretch does not slow a long easy one)
-        const double len_mm = table.s_of_u(st.u1) - table.s_of_u(st.u0);
-        const double new_own_s = own_s + (st.cap > 0.0 ? len_mm / st.cap : 0.0);
+        const double new_own_s = own_s + len_own_s;
         const bool cheap = new_lo > 0.0 && (piece_mm + len_mm) / new_lo <=
                                                (1.0 + tolerances::plan_piece_merge_time_loss) * new_own_s;
         if (j.smooth() && !(new_hi > tolerances::plan_piece_cap_ratio * new_lo) && cheap) {
@@ -177,8 +178,8 @@ std::vector<MovePiece> split_move(const Curve& c, const ArcLengthTable& table, d
       p.end = {std::numeric_limits<double>::infinity(), 0.0};
       pieces.push_back(p);
       lo = hi = st.cap;
-      piece_mm = table.s_of_u(st.u1) - table.s_of_u(st.u0);
-      own_s = st.cap > 0.0 ? piece_mm / st.cap : 0.0;
+      piece_mm = len_mm;
+      own_s = len_own_s;
     }
   }
   pieces.front().stationary_start = cuts.front().stationary;
