@@ -167,7 +167,20 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
       samples *= 4;
       continue;
     }
-    if (!std::isfinite(lo.max_kappa)) return hi;  // no regular point
+    if (!std::isfinite(lo.max_kappa)) {
+      // No regular point: the stretch lies where |C'| is rounding-sized against the span's peak
+      // (beside a stationary point), yet the tool may still move along it (a repeated control
+      // point with weights 100 and 0.43 left 1.8e-9 mm there; with a zero tangent bound the stop
+      // ran at the jerk of the wrong axis, 5.5 times Y's). Every axis whose coordinate changes
+      // over the samples may carry the whole tangent; the curvature is noise, as at the stop.
+      Vec3 low = ds[0][0], high = ds[0][0];
+      for (const Derivatives& d : ds) {
+        low = low.cwiseMin(d[0]);
+        high = high.cwiseMax(d[0]);
+      }
+      for (int i = 0; i < 3; ++i) hi.tangent[i] = high[i] > low[i] ? 1.0 : 0.0;
+      return hi;
+    }
     // A narrow peak of |K| or |dK/ds| between samples (a large weight bends a small part of a
     // span): each sample that is a local maximum standing out of a neighbour by more than
     // tolerances::plan_peak_refine_ratio is refined by golden section between its neighbours.
