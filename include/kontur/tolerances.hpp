@@ -384,6 +384,15 @@ inline constexpr double check_resync_mm = 1e-6;
 /// chord check (checker): the setpoints on either side are measured against chords through it, as
 /// at a corner between two moves (a degree-1 or double-knot spline has corners inside one move).
 inline constexpr double check_corner_tangent_jump = 1e-3;
+/// The checker's projection of a setpoint on its move searches finer than its 17 samples per span
+/// only where the nearest point those samples find is farther than this [mm] (a setpoint on the
+/// path is found within 1e-12 mm by them almost always; the path-error alarm is at 1e-6 mm) ...
+inline constexpr double check_projection_search_above_mm = 1e-9;
+/// ... and only in a sample interval whose arc length lets it hold a point nearer by more than
+/// this share of the distance (and 1e-9 mm) ...
+inline constexpr double check_projection_search_relative = 1e-3;
+/// ... at most this many finer searches per setpoint, the nearest intervals first.
+inline constexpr int check_projection_search_budget = 24;
 /// The checker accepts a blend whose deviation exceeds its tolerance by at most this, relative.
 inline constexpr double blend_deviation_relative = 1e-9;
 

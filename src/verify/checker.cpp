@@ -7,6 +7,7 @@
 #include <kontur/tolerances.hpp>
 #include <kontur/verify/checker.hpp>
 #include <limits>
+#include <utility>
 
 namespace kontur::verify {
 namespace {
@@ -44,12 +45,26 @@ double refine(const Curve& c, const Vec3& p, double a, double b, double u) {
   return u;
 }
 
+// Arc length [mm] of [a, b] by the 5-point Gauss rule (a bound's estimate, not a measurement).
+double gauss_length(const Curve& c, double a, double b) {
+  static constexpr std::array<double, 5> x = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640,
+                                              0.9061798459386640};
+  static constexpr std::array<double, 5> w = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665,
+                                              0.2369268850561891, 0.2369268850561891};
+  double length_mm = 0.0;
+  for (std::size_t q = 0; q < 5; ++q) length_mm += w[q] * c.speed(0.5 * (a + b) + 0.5 * (b - a) * x[q]);
+  return length_mm * 0.5 * (b - a);
+}
+
 // Closest parameter on a curve to p: the refinement forward from `u_hint` (the previous
 // setpoint's parameter: setpoints advance along the move), else the nearest of 16 samples on every
 // span (a NURBS with uneven weights moves very unevenly in u), refined by Newton within its span.
 // Every Newton bracket lies within one span: at a breakpoint the curve may turn (a double knot) or
 // stand still (repeated control points), where (C - p) . C' jumps.
-double project(const Curve& c, const std::vector<double>& bp, const Vec3& p, double u_hint) {
+// (`samples_of()` gives the move's detail::CurveSamples, computed only when the forward refinement
+// does not find the setpoint on the path.)
+template <class SamplesOf>
+double project(const Curve& c, const std::vector<double>& bp, SamplesOf&& samples_of, const Vec3& p, double u_hint) {
   const double h = (c.u_max() - c.u_min()) * 1e-3;
   u_hint = std::clamp(u_hint, c.u_min(), c.u_max());
   const auto dist2 = [&](double u) { return (c.point(u) - p).squaredNorm(); };
@@ -84,25 +99,87 @@ double project(const Curve& c, const std::vector<double>& bp, const Vec3& p, dou
   // Every local minimum of the distance over 17 samples of every span, refined within the span: a
   // candidate each (the nearest of the whole curve may be in a span of no length, beyond a corner
   // the forward refinement does not reach, or on a branch of a loop that passes close by).
+  // A sample interval of arc length L between points at distances d0 and d1 holds no point nearer
+  // than (d0 + d1 - L) / 2; where that is nearer than the nearest candidate, the interval is
+  // sampled 8 times finer, 3 levels deep, check_projection_search_budget times at most (a degree-9
+  // Bezier of 3 um with weights 0.01..23 loops within one sample interval: a false "2.3e-6 mm off
+  // the path", property seed 976). L is a 5-point Gauss estimate, not a bound.
   std::vector<double> candidates = {u_forward, u_local};
-  std::array<double, 17> us{}, ds{};
-  for (std::size_t i = 0; i + 1 < bp.size(); ++i) {
-    for (std::size_t k = 0; k < 17; ++k) {
-      us[k] = k == 16 ? bp[i + 1] : bp[i] + (bp[i + 1] - bp[i]) * static_cast<double>(k) / 16.0;
-      ds[k] = dist2(us[k]);
-    }
-    for (std::size_t k = 0; k < 17; ++k) {
-      if ((k > 0 && ds[k] > ds[k - 1]) || (k < 16 && ds[k] > ds[k + 1])) continue;
-      const double lo = us[k > 0 ? k - 1 : 0], hi = us[k < 16 ? k + 1 : 16];
+  double nearest = std::min(std::sqrt(dist2(u_forward)), std::sqrt(dist2(u_local)));
+  const auto add_minima = [&](const double* us, const double* ds, std::size_t n) {
+    for (std::size_t k = 0; k < n; ++k) {
+      if ((k > 0 && ds[k] > ds[k - 1]) || (k + 1 < n && ds[k] > ds[k + 1])) continue;
+      const double lo = us[k > 0 ? k - 1 : 0], hi = us[k + 1 < n ? k + 1 : n - 1];
       // (from inside the span: at its right end the derivatives are the next span's)
-      candidates.push_back(refine(c, p, lo, hi, k < 16 ? us[k] : 0.5 * (lo + hi)));
+      const double u = refine(c, p, lo, hi, k + 1 < n ? us[k] : 0.5 * (lo + hi));
+      candidates.push_back(u);
+      nearest = std::min(nearest, std::sqrt(dist2(u)));
+    }
+  };
+  // A lower bound of the distance from p to the piece between C(a) and C(b) of arc length L: every
+  // point of it is within L of both ends taken together, and within the ellipsoid of foci C(a),
+  // C(b) and major axis L, so within the capsule of radius sqrt(L^2 - chord^2) / 2 around the chord.
+  const auto may_hold_nearer = [&](const Vec3& ca, const Vec3& cb, double da2, double db2, double length_mm,
+                                   double radius_mm) {
+    const Vec3 chord = cb - ca;
+    const double chord2 = chord.squaredNorm();
+    const double along = chord2 > 0.0 ? std::clamp((p - ca).dot(chord) / chord2, 0.0, 1.0) : 0.0;
+    const double bound_mm = std::max(0.5 * (std::sqrt(da2) + std::sqrt(db2) - length_mm),
+                                     (p - (ca + along * chord)).norm() - radius_mm);
+    // (nearer by a share of the distance worth finding: the deviation is then right to that share)
+    return bound_mm < nearest - std::max(1e-9, tolerances::check_projection_search_relative * nearest);
+  };
+  int budget = tolerances::check_projection_search_budget;  // finer searches left
+  const auto finer = [&](auto&& self, double a, double b, int depth) -> void {
+    if (budget <= 0) return;
+    --budget;
+    std::array<double, 9> fu{}, fd{};
+    std::array<Vec3, 9> fp{};
+    for (std::size_t k = 0; k < 9; ++k) {
+      fu[k] = k == 8 ? b : a + (b - a) * static_cast<double>(k) / 8.0;
+      fp[k] = c.point(fu[k]);
+      fd[k] = (fp[k] - p).squaredNorm();
+    }
+    add_minima(fu.data(), fd.data(), 9);
+    if (depth <= 1) return;
+    for (std::size_t k = 0; k < 8; ++k) {
+      const double length_mm = gauss_length(c, fu[k], fu[k + 1]);
+      const double chord_mm = (fp[k + 1] - fp[k]).norm();
+      const double radius_mm = 0.5 * std::sqrt(std::max(0.0, length_mm * length_mm - chord_mm * chord_mm));
+      if (may_hold_nearer(fp[k], fp[k + 1], fd[k], fd[k + 1], length_mm, radius_mm))
+        self(self, fu[k], fu[k + 1], depth - 1);
+    }
+  };
+  const detail::CurveSamples& samples = samples_of();
+  std::array<double, 17> ds{};
+  for (std::size_t i = 0; i + 1 < bp.size(); ++i) {
+    const Vec3* ps = samples.point.data() + 17 * i;
+    for (std::size_t k = 0; k < 17; ++k) ds[k] = (ps[k] - p).squaredNorm();
+    add_minima(samples.u.data() + 17 * i, ds.data(), 17);
+  }
+  // Finer only where the samples leave the setpoint measurably off the path (tolerances.hpp:
+  // check_projection_search_above_mm; a 100-turn arc's setpoints at 1e-12 mm cost nothing more).
+  if (nearest > tolerances::check_projection_search_above_mm) {
+    std::vector<std::pair<double, std::size_t>> open;  // (distance of an interval's ends, its index)
+    for (std::size_t i = 0; i + 1 < bp.size(); ++i) {
+      const Vec3* ps = samples.point.data() + 17 * i;
+      for (std::size_t k = 0; k < 16; ++k) {
+        const double d0 = (ps[k] - p).squaredNorm(), d1 = (ps[k + 1] - p).squaredNorm();
+        if (may_hold_nearer(ps[k], ps[k + 1], d0, d1, samples.length_mm[16 * i + k], samples.radius_mm[16 * i + k]))
+          open.emplace_back(std::min(d0, d1), 16 * i + k);
+      }
+    }
+    // (the nearest intervals first: the search is bounded, tolerances::check_projection_search_budget)
+    std::sort(open.begin(), open.end());
+    for (const auto& entry : open) {
+      const std::size_t j = entry.second;
+      const double* us = samples.u.data() + 17 * (j / 16) + j % 16;
+      finer(finer, us[0], us[1], 3);
     }
   }
   // Of the points within 1e-9 mm of the nearest, the first one ahead of u_hint: where the path
   // passes a place twice (a multi-turn arc, a cusp that turns back along itself), the other pass
   // may be as near, and jumping there would break the order of the setpoints along the move.
-  double nearest = std::numeric_limits<double>::infinity();
-  for (double u : candidates) nearest = std::min(nearest, std::sqrt(dist2(u)));
   double chosen = std::numeric_limits<double>::quiet_NaN();
   for (double u : candidates)
     if (u >= u_hint && std::sqrt(dist2(u)) <= nearest + 1e-9 && !(u >= chosen)) chosen = u;
@@ -236,7 +313,7 @@ void Checker::nearest_on_path(const Vec3& p, std::size_t& m, double& u, double& 
       const std::size_t n = ix.order[k];
       if (!(ix.boxes[n].distance(p) < d)) continue;
       const Curve& c = *moves_[n].curve;
-      const double un = project(c, spans_of(n), p, c.u_min());
+      const double un = project(c, spans_of(n), [&]() -> const detail::CurveSamples& { return samples_of(n); }, p, c.u_min());
       const double dn = (c.point(un) - p).norm();
       if (dn < d) {
         m = n;
@@ -354,6 +431,34 @@ const std::vector<double>& Checker::spans_of(std::size_t i) {
   return breakpoints_[i];
 }
 
+const detail::CurveSamples& Checker::samples_of(std::size_t i) {
+  for (const detail::CurveSamples& s : samples_)
+    if (s.move == i) return s;
+  detail::CurveSamples& s = samples_[samples_next_];
+  samples_next_ = (samples_next_ + 1) % samples_.size();
+  const Curve& c = *moves_[i].curve;
+  const std::vector<double>& bp = spans_of(i);
+  s.move = i;
+  s.u.clear();
+  s.point.clear();
+  s.length_mm.clear();
+  s.radius_mm.clear();
+  for (std::size_t j = 0; j + 1 < bp.size(); ++j)
+    for (std::size_t k = 0; k < 17; ++k) {
+      const double u = k == 16 ? bp[j + 1] : bp[j] + (bp[j + 1] - bp[j]) * static_cast<double>(k) / 16.0;
+      s.u.push_back(u);
+      // (the span's end as its own limit: at a breakpoint the next span may start elsewhere only in
+      // its derivatives; the point is the same)
+      s.point.push_back(c.point(u));
+      if (k == 0) continue;
+      const double length_mm = gauss_length(c, s.u[s.u.size() - 2], u);
+      const double chord_mm = (s.point.back() - s.point[s.point.size() - 2]).norm();
+      s.length_mm.push_back(length_mm);
+      s.radius_mm.push_back(0.5 * std::sqrt(std::max(0.0, length_mm * length_mm - chord_mm * chord_mm)));
+    }
+  return s;
+}
+
 const std::vector<double>& Checker::corners_of(std::size_t i) {
   if (corners_.size() <= i) corners_.resize(i + 1);
   if (!corners_[i]) {
@@ -379,7 +484,7 @@ std::size_t Checker::match(const Sample& s, const Vec3& p, double& u, double& d)
     // The planner's setpoint names its move.
     const std::size_t m = s.move;
     const Curve& c = *moves_[m].curve;
-    u = project(c, spans_of(m), p, m == m_prev_ && k > 0 ? u_prev_ : c.u_min());
+    u = project(c, spans_of(m), [&]() -> const detail::CurveSamples& { return samples_of(m); }, p, m == m_prev_ && k > 0 ? u_prev_ : c.u_min());
     d = (c.point(u) - p).norm();
     return m;
   }
@@ -395,7 +500,7 @@ std::size_t Checker::match(const Sample& s, const Vec3& p, double& u, double& d)
       }
   }
   const Curve* c = moves_[m].curve.get();
-  u = project(*c, spans_of(m), p, m == m_prev_ && k > 0 ? u_prev_ : c->u_min());
+  u = project(*c, spans_of(m), [&]() -> const detail::CurveSamples& { return samples_of(m); }, p, m == m_prev_ && k > 0 ? u_prev_ : c->u_min());
   d = (c->point(u) - p).norm();
   // A setpoint whose line is no move's (a dwell) stays where the motion stopped; one on a known
   // line looks among the following moves of the same line only.
@@ -404,7 +509,7 @@ std::size_t Checker::match(const Sample& s, const Vec3& p, double& u, double& d)
   for (std::size_t n = m + 1; n < moves_.size() && n <= m + 8 && (on_line || !line_known); ++n) {
     if (on_line && moves_[n].source_line != s.source_line) break;
     const Curve& cn = *moves_[n].curve;
-    const double un = project(cn, spans_of(n), p, cn.u_min());
+    const double un = project(cn, spans_of(n), [&]() -> const detail::CurveSamples& { return samples_of(n); }, p, cn.u_min());
     const double dn = (cn.point(un) - p).norm();
     if (dn < d || (dn <= d && un > cn.u_min())) {
       m = n;

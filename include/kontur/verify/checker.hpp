@@ -114,6 +114,19 @@ struct Report {
 
 struct PathIndex;
 
+namespace detail {
+/// A move's curve sampled for the checker's projection, computed once per move (and kept for the
+/// last few moves): 17 samples of every span, and each of the 16 sample intervals' arc length
+/// (5-point Gauss) and the radius of the capsule around its chord that holds it.
+struct CurveSamples {
+  std::size_t move = static_cast<std::size_t>(-1);
+  std::vector<double> u;           // 17 per span
+  std::vector<Vec3> point;         // C(u) [mm]
+  std::vector<double> length_mm;   // 16 per span
+  std::vector<double> radius_mm;   // 16 per span: sqrt(L^2 - chord^2) / 2
+};
+}  // namespace detail
+
 /// The streaming check.
 class Checker {
  public:
@@ -145,6 +158,7 @@ class Checker {
     double excess_v = 0.0, excess_a = 0.0, excess_j = 0.0;  // less the rounding of the positions
   };
   [[nodiscard]] const std::vector<double>& spans_of(std::size_t move);
+  [[nodiscard]] const detail::CurveSamples& samples_of(std::size_t move);
   // The move's corners, computed once: where its curve stands still (C' = 0: a cusp or a repeated
   // control point, where the planner stops) or its tangent jumps at a breakpoint (a double knot, a
   // degree-1 spline): the setpoints cut them as they cut a corner between two moves.
@@ -173,6 +187,8 @@ class Checker {
   Vec3 last_point_ = Vec3::Zero();
   std::vector<std::vector<double>> breakpoints_;  // per move, computed once (the projection samples every span)
   std::vector<std::optional<std::vector<double>>> corners_;  // per move, computed once (corners_of)
+  std::array<detail::CurveSamples, 16> samples_{};  // of the last moves projected on (samples_of)
+  std::size_t samples_next_ = 0;                    // the entry replaced next
   std::unique_ptr<PathIndex> index_;              // built on the first setpoint that needs it
   std::size_t m_ = 0, m_prev_ = 0;
   double u_prev_ = 0.0;
