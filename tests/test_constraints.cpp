@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <kontur/geometry/helix_arc.hpp>
 #include <kontur/geometry/line_segment.hpp>
+#include <kontur/geometry/nurbs.hpp>
 #include <kontur/plan/constraints.hpp>
 #include <kontur/plan/time_optimal.hpp>
 
@@ -12,6 +13,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 
 namespace kontur::plan {
 namespace {
@@ -98,6 +100,58 @@ TEST(Constraints, BothCurvatureFormsGiveTheCurvatureVector) {
   EXPECT_NEAR((k - k2).norm(), 0.0, 1e-15);
   EXPECT_NEAR(t.dot(k), 0.0, 1e-15);
   EXPECT_NEAR(k.dot(arc.point(0.3)), -1.0, 1e-12);  // towards the centre: K = -p / R^2
+}
+
+TEST(Constraints, ArcKeepsTheAccelerationItsTangentAndCurvatureLeaveTogether) {
+  // On a circle of radius R the x component of the acceleration is -sin(theta) a - cos(theta) v^2/R:
+  // at a centripetal share c of A the path may accelerate by sqrt(1 - c^2) A, not (1 - c) A as the
+  // maxima of |t_x| and |K_x| alone allow (PathGeometry::pairs). (A stiff machine: the cross term
+  // 3 K v a of the jerk bounds nothing.)
+  Machine m = full_machine();
+  for (AxisLimits& axis : m.axes) axis.max_jerk = 1e9;
+  const double r_mm = 20.0, a_max = m.axes[0].max_acceleration;
+  const HelixArc arc(CircleFrame{}, r_mm, 1.5 * std::numbers::pi);
+  const PathGeometry g = path_geometry(arc, arc.u_min(), arc.u_max());
+  for (const double c : {0.5, 0.7, 0.9}) {
+    const double v = std::sqrt(c * a_max * r_mm);
+    const double a = path_limits_at(g, v, m, 0.0).max_acceleration;
+    SCOPED_TRACE(c);
+    EXPECT_LE(a, std::sqrt(1.0 - c * c) * a_max);         // a bound: never above the exact share
+    // and near it (the maxima alone: (1 - c) A, at c = 0.9 a fifth of what is left)
+    EXPECT_GE(a, (c < 0.8 ? 0.85 : 0.7) * std::sqrt(1.0 - c * c) * a_max);
+  }
+}
+
+TEST(Constraints, PairedBoundHoldsAtEveryPointOfRandomNurbs) {
+  // Seeded random cubic NURBS (weights 0.2..5): at the speed cap and the path acceleration of each
+  // span, |t_i| a + |K_i| v^2 stays within A_i at 2 000 points of the span, not only at the samples.
+  Machine m = full_machine();
+  for (AxisLimits& axis : m.axes) axis.max_jerk = 1e9;  // (the jerk's cross term bounds nothing)
+  std::mt19937 rng(20261203);
+  std::uniform_real_distribution<double> coord(-20.0, 20.0), logw(std::log(0.2), std::log(5.0));
+  double worst = 0.0;
+  for (int trial = 0; trial < 200; ++trial) {
+    NurbsData d;
+    d.degree = 3;
+    d.knots = {0, 0, 0, 0, 1, 1, 1, 1};
+    for (int k = 0; k < 4; ++k) {
+      d.points.push_back({coord(rng), coord(rng), trial % 2 == 0 ? 0.0 : coord(rng)});
+      d.weights.push_back(std::exp(logw(rng)));
+    }
+    const NurbsCurve c(d);
+    const PathGeometry g = path_geometry(c, 0.0, 1.0);
+    for (const double share : tolerances::plan_centripetal_shares) {
+      const double v = speed_cap(g, 1e5, m, share);
+      const double a = path_limits_at(g, v, m, 0.0).max_acceleration;
+      for (int k = 0; k <= 2000; ++k) {
+        const auto [t, kv] = tangent_and_curvature(c.derivatives(k / 2000.0, 2));
+        for (int i = 0; i < 3; ++i)
+          worst = std::max(worst, (std::abs(t[i]) * a + std::abs(kv[i]) * v * v) / m.axes[static_cast<std::size_t>(i)].max_acceleration);
+      }
+    }
+  }
+  EXPECT_LE(worst, 1.0 + 1e-9);
+  EXPECT_GE(worst, 0.9);  // (and the bound is not slack everywhere)
 }
 
 }  // namespace

@@ -233,6 +233,10 @@ inline constexpr double plan_centripetal_shares[] = {0.5, 0.7, 0.9};
 /// sampled quantity's range its maximum is raised by (a smooth peak between samples turned by
 /// 0.2 rad lies about 1 % of the range above them; constant quantities stay exact).
 inline constexpr int plan_samples_per_span = 16;
+/// How many (|t_i|, |K_i|) pairs per axis a stretch keeps to bound its acceleration
+/// (plan::PathGeometry::pairs): more pairs follow a curve's trade of tangent against curvature
+/// more closely (8 hold a circle's quarter to within 2 % of sqrt(1 - c^2)).
+inline constexpr int plan_acceleration_pairs = 16;
 inline constexpr double plan_sample_margin = 0.05;
 /// A point where a curve's parametric speed |C'| is at most this share of its largest over the
 /// span is stationary (a cusp, or a degenerate end such as a repeated control point): its

@@ -82,7 +82,54 @@ double corner_acceleration_cap(const Vec3& dt, const Machine& machine, const Lin
   return v;
 }
 
-void PathGeometry::merge(const PathGeometry& o) noexcept {
+std::vector<std::array<double, 2>> PathGeometry::axis_pairs(int i) const {
+  const AxisPairs& p = pairs[static_cast<std::size_t>(i)];
+  std::vector<std::array<double, 2>> out;
+  for (int j = 0; j < p.n; ++j) out.push_back({p.t[static_cast<std::size_t>(j)], p.k[static_cast<std::size_t>(j)]});
+  if (out.empty() && (tangent[i] > 0.0 || curvature[i] > 0.0)) out.push_back({tangent[i], curvature[i]});
+  return out;
+}
+
+void PathGeometry::set_pairs(int i, std::vector<std::array<double, 2>> points) {
+  // The front of pairs no other dominates, by |t| rising (so |K| falling).
+  std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a[0] > b[0] || (a[0] == b[0] && a[1] > b[1]); });
+  std::vector<std::array<double, 2>> front;  // by |t| falling, |K| rising
+  for (const auto& q : points)
+    if (front.empty() || q[1] > front.back()[1]) front.push_back(q);
+  // Too many: merge the neighbours whose componentwise maximum adds the least area.
+  while (front.size() > static_cast<std::size_t>(tolerances::plan_acceleration_pairs)) {
+    std::size_t best = 0;
+    double best_area = std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j + 1 < front.size(); ++j) {
+      const double area = (front[j][0] - front[j + 1][0]) * (front[j + 1][1] - front[j][1]);
+      if (area < best_area) {
+        best_area = area;
+        best = j;
+      }
+    }
+    front[best] = {front[best][0], front[best + 1][1]};
+    front.erase(front.begin() + static_cast<std::ptrdiff_t>(best) + 1);
+  }
+  AxisPairs& p = pairs[static_cast<std::size_t>(i)];
+  p.n = static_cast<int>(front.size());
+  for (std::size_t j = 0; j < front.size(); ++j) {
+    p.t[j] = front[j][0];
+    p.k[j] = front[j][1];
+  }
+}
+
+void PathGeometry::drop_curvature() noexcept {
+  curvature = curvature_rate = Vec3::Zero();
+  max_kappa = 0.0;
+  for (AxisPairs& p : pairs) p.n = 0;  // the maxima: max |t_i| with no curvature
+}
+
+void PathGeometry::merge(const PathGeometry& o) {
+  for (int i = 0; i < 3; ++i) {
+    std::vector<std::array<double, 2>> both = axis_pairs(i), other = o.axis_pairs(i);
+    both.insert(both.end(), other.begin(), other.end());
+    set_pairs(i, std::move(both));
+  }
   tangent = tangent.cwiseMax(o.tangent);
   curvature = curvature.cwiseMax(o.curvature);
   curvature_rate = curvature_rate.cwiseMax(o.curvature_rate);
@@ -137,6 +184,7 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
       const auto [kv, kr] = curvature_vector_and_rate(d);
       return Local{unit_tangent(d), kv, kr};
     };
+    std::vector<Local> peaks;  // refined peaks of |K| or |dK/ds| between samples
     const auto add = [](const Local& l, PathGeometry& g, bool smallest) {
       const Vec3 at = l.tangent.cwiseAbs(), ak = l.curvature.cwiseAbs(), ar = l.rate.cwiseAbs();
       if (smallest) {
@@ -153,9 +201,11 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
     };
     // |K| and |dK/ds| of each regular sample (-1: not regular)
     std::vector<double> kappa(n, -1.0), rate(n, -1.0);
+    std::vector<Local> locals(n);  // of the regular samples
     for (std::size_t k = 0; k < n; ++k) {
       if (!regular(ds[k])) continue;
       const Local l = local(ds[k]);
+      locals[k] = l;
       if (!t_before.isZero()) max_turn = std::max(max_turn, (l.tangent - t_before).norm());
       t_before = l.tangent;
       add(l, hi, false);
@@ -202,16 +252,50 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
         };
         const auto [u_peak, f_peak] =
             golden_section_minimum(negative_value, us[k > 0 ? k - 1 : k], us[k + 1 < n ? k + 1 : k], 60);
-        if (f_peak <= 0.0) add(local(c.derivatives(u_peak, 3)), hi, false);
+        if (f_peak <= 0.0) {
+          const Local l = local(c.derivatives(u_peak, 3));
+          add(l, hi, false);
+          peaks.push_back(l);
+        }
       }
     }
     // Constant quantities (a line's tangent, a circle's curvature) are exact; the others are
     // raised by a share of their range between the samples.
     constexpr double m = tolerances::plan_sample_margin;
+    const Vec3 hi_t_raw = hi.tangent, hi_k_raw = hi.curvature;
     hi.tangent = (hi.tangent + m * (hi.tangent - lo.tangent)).cwiseMin(Vec3::Ones());
     hi.curvature += m * (hi.curvature - lo.curvature);
     hi.curvature_rate += m * (hi.curvature_rate - lo.curvature_rate);
     hi.max_kappa += m * (hi.max_kappa - lo.max_kappa);
+    // The pairs (PathGeometry::pairs): one per interval between regular samples, bounding both
+    // ends; a tangent component rises between them by at most 1 - cos(phi / 2) <= phi^2 / 8 above
+    // the chord of its values (phi the turn between the samples, at most about 0.2 rad here),
+    // and by the margin of its own change; a curvature component, turning with the normal, by
+    // |K| phi^2 / 8 and the margin of its change (a narrow peak of |K| is refined above). A sample
+    // with no regular neighbour and each refined peak: a pair of its own, raised by the margins of
+    // the ranges.
+    for (int i = 0; i < 3; ++i) {
+      const double raise_t = m * (hi_t_raw[i] - lo.tangent[i]), raise_k = m * (hi_k_raw[i] - lo.curvature[i]);
+      std::vector<std::array<double, 2>> pairs;
+      const auto alone = [&](const Local& l) {
+        pairs.push_back({std::min(1.0, std::abs(l.tangent[i]) + raise_t), std::abs(l.curvature[i]) + raise_k});
+      };
+      for (std::size_t k = 0; k < n; ++k) {
+        if (kappa[k] < 0.0) continue;
+        const bool left = k > 0 && kappa[k - 1] >= 0.0, right = k + 1 < n && kappa[k + 1] >= 0.0;
+        if (!left && !right) alone(locals[k]);
+        if (!right) continue;
+        const Local &a = locals[k], &b = locals[k + 1];
+        const double phi = 2.0 * std::asin(std::min(1.0, 0.5 * (a.tangent - b.tangent).norm()));
+        const double ta = std::abs(a.tangent[i]), tb = std::abs(b.tangent[i]);
+        const double ka = std::abs(a.curvature[i]), kb = std::abs(b.curvature[i]);
+        const double kappa_ab = std::max(kappa[k], kappa[k + 1]);
+        pairs.push_back({std::min(1.0, std::max(ta, tb) + phi * phi / 8.0 + m * std::abs(ta - tb)),
+                         std::max(ka, kb) + kappa_ab * phi * phi / 8.0 + m * std::abs(ka - kb)});
+      }
+      for (const Local& l : peaks) alone(l);
+      hi.set_pairs(i, std::move(pairs));
+    }
     return hi;
   }
 }
@@ -247,8 +331,13 @@ PathLimits limits_at_cap(const PathGeometry& g, double v, const Machine& machine
   for (const AxisLimits& axis : machine.axes) {
     const int i = linear_axis_index(axis.name);
     if (i < 0 || !(g.tangent[i] > 0.0)) continue;
-    const double k = g.curvature[i], t = g.tangent[i];
-    double a = (axis.max_acceleration - k * v * v) / t;
+    const double k = g.curvature[i];
+    // |t_i| a + |K_i| v^2 <= A_i at each of the stretch's pairs (PathGeometry::pairs)
+    double a = kInf;
+    const PathGeometry::AxisPairs& p = g.pairs[static_cast<std::size_t>(i)];
+    if (p.n == 0) a = (axis.max_acceleration - k * v * v) / g.tangent[i];
+    for (std::size_t q = 0; q < static_cast<std::size_t>(p.n); ++q)
+      if (p.t[q] > 0.0) a = std::min(a, (axis.max_acceleration - p.k[q] * v * v) / p.t[q]);
     if (k > 0.0 && v > 0.0) a = std::min(a, tolerances::plan_cross_jerk_share * axis.max_jerk / (3.0 * k * v));
     l.max_acceleration = std::min(l.max_acceleration, a);
   }

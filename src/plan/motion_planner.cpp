@@ -31,8 +31,7 @@ void add_stretches(const Curve& c, double u0, double u1, const PathGeometry& g, 
                    const Machine& machine, double speed_floor, int depth, std::vector<CapSpan>& out, int& budget) {
   constexpr int parts = 4;
   PathGeometry straight = g;
-  straight.curvature = straight.curvature_rate = Vec3::Zero();
-  straight.max_kappa = 0.0;
+  straight.drop_curvature();
   const bool bent = cap < span_cap(straight, feed_mm_s, machine);
   if (bent && depth < tolerances::plan_span_max_depth && budget > parts - 1) {
     std::array<double, parts + 1> us{};
@@ -139,8 +138,7 @@ std::vector<MovePiece> split_move(const Curve& c, const ArcLengthTable& table, d
             : 0.0;
     PathGeometry g = path_geometry(c, ua, ub, tolerances::plan_samples_per_span, speed_floor);
     if (all_blind) {
-      g.curvature = g.curvature_rate = Vec3::Zero();
-      g.max_kappa = 0.0;
+      g.drop_curvature();
     }
     add_stretches(c, ua, ub, g, span_cap(g, feed_mm_s, machine), feed_mm_s, machine, speed_floor, 0, stretches, budget);
     stretches.front().u0 = at.u;

@@ -83,8 +83,27 @@ struct PathGeometry {
   /// |dq_e/ds| of each extra axis A B C [deg/mm] U V W [mm/mm] (they move linearly with the path
   /// distance: no curvature terms); ExtraAxes order.
   ExtraAxes extra_rate{};
+  /// Per axis, pairs (|t_i|, |K_i|) of sampled points, raised by the same margins as the maxima:
+  /// the axis's acceleration |t_i| a + |K_i| v^2 <= A_i need only hold at each pair, which is
+  /// tighter than at (max |t_i|, max |K_i|) where the two peak apart. On a circle the tangent's
+  /// component peaks where the curvature's vanishes: at a centripetal share c of A the path keeps
+  /// about sqrt(1 - c^2) A of acceleration, not (1 - c) A. A pair dominated by another is dropped;
+  /// while there are more than tolerances::plan_acceleration_pairs, neighbours are merged into
+  /// their componentwise maximum (still a bound). None (n == 0): the maxima are the one pair.
+  struct AxisPairs {
+    std::array<double, tolerances::plan_acceleration_pairs> t{};  ///< |t_i|
+    std::array<double, tolerances::plan_acceleration_pairs> k{};  ///< |K_i| [1/mm]
+    int n = 0;
+  };
+  std::array<AxisPairs, 3> pairs{};
+  /// The pairs of axis i, or the maxima as one pair where none were sampled ({t, k} each).
+  [[nodiscard]] std::vector<std::array<double, 2>> axis_pairs(int i) const;
+  /// Sets the pairs of axis i from any number of (|t_i|, |K_i|), reduced as above.
+  void set_pairs(int i, std::vector<std::array<double, 2>> points);
   /// The bounds of both stretches.
-  void merge(const PathGeometry& other) noexcept;
+  void merge(const PathGeometry& other);
+  /// Forget the curvature (a stretch the motion only stops in, or the straight comparison).
+  void drop_curvature() noexcept;
 };
 
 /// Geometry bounds of a curve between parameters u0 < u1 (inside one span, or sampled per span).
