@@ -71,6 +71,13 @@ std::string machine_toml(double period_s, double chord_mm, const std::array<std:
   return t;
 }
 
+// `text` on the machine of `machine_toml` passes the check and ends on its programmed end.
+void expect_passes_on_machine(const std::string& name, const std::string& machine_toml, const std::string& text) {
+  const RunResult r = run_on_machine(name, machine_toml, text);
+  EXPECT_TRUE(r.passed) << r.summary_json.substr(0, 2000);
+  EXPECT_LE(r.check.end_error_mm, 1e-9);
+}
+
 // Passes on both periods, and takes at most `max_time_s` [s] (no crawl at a speed of 1e-27 mm/s).
 void expect_runs_within_limits(const std::string& name, const std::string& body, double max_time_s) {
   for (const double period_s : {1e-3, 125e-6}) {
@@ -236,23 +243,19 @@ TEST(UnkindInput, NurbsCornerAtARepeatedControlPointStopsAtTheJerkOfTheAxesItMov
   // tangent bound was zero, so the stop ran at X's jerk on a path that moves Y
   // (path_geometry: every axis that moves over a stretch without a regular point may carry the
   // whole tangent).
-  const RunResult r = run_on_machine(
+  expect_passes_on_machine(
       "seed3510", machine_toml(637e-6, 0.0010565, {{{129.6737, 10.412, 1191.9}, {4.5403, 0.117, 4.2}, {129.6737, 10.412, 7343.8}}}),
       "G21 G90 G94 G17\nG0 X-0.109406 Y-0.135351\nF1577.766163\nG5.2 P0.042957\nX0.005848 Y-0.397271 P100\n"
       "X0.005848 Y-0.397271 P0.427655\nX0.163105 Y-0.420626 P0.01\nG5.3\nM2\n");
-  EXPECT_TRUE(r.passed) << r.summary_json.substr(0, 2000);
-  EXPECT_LE(r.check.end_error_mm, 1e-9);
 }
 
 TEST(UnkindInput, NurbsStartingOnAThriceRepeatedPointKeepsTheJerkOfY) {  // seed 5865: jerk 7.3x
-  const RunResult r = run_on_machine(
+  expect_passes_on_machine(
       "seed5865", machine_toml(2.782e-3, 0.0148751, {{{165.2694, 952.109, 59667}, {70.5116, 33.14, 47.3}, {110.2396, 804.615, 1324.1}}}),
       "G21 G90 G94 G17\nG0 X95.746121 Y-1.041625 Z0.01413\nF399.314939\nG5.2 P0.01 L3\n"
       "X97.053258 Y-4.184198 P72.484831\nX97.053258 Y-4.184198 P1.318517\nX97.053258 Y-4.184198 P100\n"
       "X99.330109 Y-0.818941 P0.97343\nX102.792608 Y0.621458 P1\nX99.751674 Y-0.663706 P1\n"
       "X103.437769 Y-2.799143 P100\nG5.3\nM2\n");
-  EXPECT_TRUE(r.passed) << r.summary_json.substr(0, 2000);
-  EXPECT_LE(r.check.end_error_mm, 1e-9);
 }
 
 TEST(UnkindInput, DegreeNineNurbsWithASpikeOfSpeedAtItsEndHasItsTrueLength) {  // seed 181: jerk 3.4x

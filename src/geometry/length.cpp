@@ -110,17 +110,6 @@ double step_length(const Curve& curve, double a, double b, double va, double vb,
   return patterson_levels(curve, a, b, rel_tol, unused, pv, 1, gauss).value;
 }
 
-// The fixed rule of one level on [a, b] (used for partial table intervals).
-double patterson_fixed(const Curve& curve, double a, double b, int level) noexcept {
-  const double centre = 0.5 * (a + b), half = 0.5 * (b - a);
-  const auto& w = Rules::weights[static_cast<std::size_t>(level)];
-  double q = w[0] * curve.speed(centre);
-  for (int i = 1; i < Rules::used[static_cast<std::size_t>(level)]; ++i) {
-    const double dx = half * Rules::nodes[static_cast<std::size_t>(i)];
-    q += w[static_cast<std::size_t>(i)] * (curve.speed(centre - dx) + curve.speed(centre + dx));
-  }
-  return q * half;
-}
 
 // Adaptive bisection of a piece [a, b] whose first panel `r` is already computed; calls
 // accept(a, b, result) for every accepted panel, in order. A panel is accepted when its error is
@@ -195,6 +184,17 @@ void for_each_piece(const Curve& curve, double u0, double u1, F&& f) {
 }
 
 }  // namespace
+
+double fixed_rule_length(const Curve& curve, double a, double b, int level) noexcept {
+  const double centre = 0.5 * (a + b), half = 0.5 * (b - a);
+  const auto& w = Rules::weights[static_cast<std::size_t>(level)];
+  double q = w[0] * curve.speed(centre);
+  for (int i = 1; i < Rules::used[static_cast<std::size_t>(level)]; ++i) {
+    const double dx = half * Rules::nodes[static_cast<std::size_t>(i)];
+    q += w[static_cast<std::size_t>(i)] * (curve.speed(centre - dx) + curve.speed(centre + dx));
+  }
+  return q * half;
+}
 
 LengthResult simpson_runge_length(const Curve& curve, SimpsonScheme scheme, double rel_tol, int max_halvings) {
   LengthResult out;
@@ -281,7 +281,7 @@ double ArcLengthTable::s_of_u(double u) const noexcept {
   const auto it = std::upper_bound(u_.begin(), u_.end(), u);
   const std::size_t k = (it == u_.begin()) ? 0 : std::min<std::size_t>(static_cast<std::size_t>(it - u_.begin()) - 1, u_.size() - 2);
   if (u == u_[k]) return s_[k];
-  return s_[k] + patterson_fixed(*curve_, u_[k], u, level_[k]);
+  return s_[k] + fixed_rule_length(*curve_, u_[k], u, level_[k]);
 }
 
 double ArcLengthTable::u_of_s(double s) const noexcept { return u_of_s(s, std::numeric_limits<double>::quiet_NaN()); }
@@ -301,7 +301,7 @@ double ArcLengthTable::u_of_s(double s, double u_hint) const noexcept {
   if (u_hint > ua && u_hint < ub) u = u_hint;  // false for NaN
   const double ftol = tolerances::inverse_length_relative * std::max(total, 1e-300);
   for (int it_count = 0; it_count < tolerances::inverse_length_max_iterations; ++it_count) {
-    const double f = (u > ua ? patterson_fixed(*curve_, ua, u, level_[k]) : 0.0) - ds;
+    const double f = (u > ua ? fixed_rule_length(*curve_, ua, u, level_[k]) : 0.0) - ds;
     if (std::abs(f) <= ftol) break;
     if (f > 0.0) hi = u; else lo = u;
     const double v = curve_->speed(u);

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <kontur/geometry/differential.hpp>
+#include <kontur/geometry/length.hpp>
 #include <kontur/tolerances.hpp>
 #include <kontur/verify/checker.hpp>
 #include <limits>
@@ -45,15 +46,11 @@ double refine(const Curve& c, const Vec3& p, double a, double b, double u) {
   return u;
 }
 
-// Arc length [mm] of [a, b] by the 5-point Gauss rule (a bound's estimate, not a measurement).
-double gauss_length(const Curve& c, double a, double b) {
-  static constexpr std::array<double, 5> x = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640,
-                                              0.9061798459386640};
-  static constexpr std::array<double, 5> w = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665,
-                                              0.2369268850561891, 0.2369268850561891};
-  double length_mm = 0.0;
-  for (std::size_t q = 0; q < 5; ++q) length_mm += w[q] * c.speed(0.5 * (a + b) + 0.5 * (b - a) * x[q]);
-  return length_mm * 0.5 * (b - a);
+// The bound of the piece of c between a and b, whose ends are pa = C(a) and pb = C(b).
+detail::IntervalBound interval_bound(const Curve& c, double a, double b, const Vec3& pa, const Vec3& pb) {
+  const double length_mm = fixed_rule_length(c, a, b);
+  const double chord_mm = (pb - pa).norm();
+  return {length_mm, 0.5 * std::sqrt(std::max(0.0, length_mm * length_mm - chord_mm * chord_mm))};
 }
 
 // Closest parameter on a curve to p: the refinement forward from `u_hint` (the previous
@@ -103,7 +100,7 @@ double project(const Curve& c, const std::vector<double>& bp, SamplesOf&& sample
   // than (d0 + d1 - L) / 2; where that is nearer than the nearest candidate, the interval is
   // sampled 8 times finer, 3 levels deep, check_projection_search_budget times at most (a degree-9
   // Bezier of 3 um with weights 0.01..23 loops within one sample interval: a false "2.3e-6 mm off
-  // the path", property seed 976). L is a 5-point Gauss estimate, not a bound.
+  // the path", property seed 976). L is the 7-point Gauss rule's estimate, not a bound.
   std::vector<double> candidates = {u_forward, u_local};
   double nearest = std::min(std::sqrt(dist2(u_forward)), std::sqrt(dist2(u_local)));
   const auto add_minima = [&](const double* us, const double* ds, std::size_t n) {
@@ -119,13 +116,13 @@ double project(const Curve& c, const std::vector<double>& bp, SamplesOf&& sample
   // A lower bound of the distance from p to the piece between C(a) and C(b) of arc length L: every
   // point of it is within L of both ends taken together, and within the ellipsoid of foci C(a),
   // C(b) and major axis L, so within the capsule of radius sqrt(L^2 - chord^2) / 2 around the chord.
-  const auto may_hold_nearer = [&](const Vec3& ca, const Vec3& cb, double da2, double db2, double length_mm,
-                                   double radius_mm) {
+  const auto may_hold_nearer = [&](const Vec3& ca, const Vec3& cb, double da2, double db2,
+                                   const detail::IntervalBound& piece) {
     const Vec3 chord = cb - ca;
     const double chord2 = chord.squaredNorm();
     const double along = chord2 > 0.0 ? std::clamp((p - ca).dot(chord) / chord2, 0.0, 1.0) : 0.0;
-    const double bound_mm = std::max(0.5 * (std::sqrt(da2) + std::sqrt(db2) - length_mm),
-                                     (p - (ca + along * chord)).norm() - radius_mm);
+    const double bound_mm = std::max(0.5 * (std::sqrt(da2) + std::sqrt(db2) - piece.length_mm),
+                                     (p - (ca + along * chord)).norm() - piece.radius_mm);
     // (nearer by a share of the distance worth finding: the deviation is then right to that share)
     return bound_mm < nearest - std::max(1e-9, tolerances::check_projection_search_relative * nearest);
   };
@@ -142,13 +139,9 @@ double project(const Curve& c, const std::vector<double>& bp, SamplesOf&& sample
     }
     add_minima(fu.data(), fd.data(), 9);
     if (depth <= 1) return;
-    for (std::size_t k = 0; k < 8; ++k) {
-      const double length_mm = gauss_length(c, fu[k], fu[k + 1]);
-      const double chord_mm = (fp[k + 1] - fp[k]).norm();
-      const double radius_mm = 0.5 * std::sqrt(std::max(0.0, length_mm * length_mm - chord_mm * chord_mm));
-      if (may_hold_nearer(fp[k], fp[k + 1], fd[k], fd[k + 1], length_mm, radius_mm))
+    for (std::size_t k = 0; k < 8; ++k)
+      if (may_hold_nearer(fp[k], fp[k + 1], fd[k], fd[k + 1], interval_bound(c, fu[k], fu[k + 1], fp[k], fp[k + 1])))
         self(self, fu[k], fu[k + 1], depth - 1);
-    }
   };
   const detail::CurveSamples& samples = samples_of();
   std::array<double, 17> ds{};
@@ -165,7 +158,7 @@ double project(const Curve& c, const std::vector<double>& bp, SamplesOf&& sample
       const Vec3* ps = samples.point.data() + 17 * i;
       for (std::size_t k = 0; k < 16; ++k) {
         const double d0 = (ps[k] - p).squaredNorm(), d1 = (ps[k + 1] - p).squaredNorm();
-        if (may_hold_nearer(ps[k], ps[k + 1], d0, d1, samples.length_mm[16 * i + k], samples.radius_mm[16 * i + k]))
+        if (may_hold_nearer(ps[k], ps[k + 1], d0, d1, samples.bound[16 * i + k]))
           open.emplace_back(std::min(d0, d1), 16 * i + k);
       }
     }
@@ -313,7 +306,7 @@ void Checker::nearest_on_path(const Vec3& p, std::size_t& m, double& u, double& 
       const std::size_t n = ix.order[k];
       if (!(ix.boxes[n].distance(p) < d)) continue;
       const Curve& c = *moves_[n].curve;
-      const double un = project(c, spans_of(n), [&]() -> const detail::CurveSamples& { return samples_of(n); }, p, c.u_min());
+      const double un = project_on(n, p, c.u_min());
       const double dn = (c.point(un) - p).norm();
       if (dn < d) {
         m = n;
@@ -441,8 +434,7 @@ const detail::CurveSamples& Checker::samples_of(std::size_t i) {
   s.move = i;
   s.u.clear();
   s.point.clear();
-  s.length_mm.clear();
-  s.radius_mm.clear();
+  s.bound.clear();
   for (std::size_t j = 0; j + 1 < bp.size(); ++j)
     for (std::size_t k = 0; k < 17; ++k) {
       const double u = k == 16 ? bp[j + 1] : bp[j] + (bp[j + 1] - bp[j]) * static_cast<double>(k) / 16.0;
@@ -450,13 +442,13 @@ const detail::CurveSamples& Checker::samples_of(std::size_t i) {
       // (the span's end as its own limit: at a breakpoint the next span may start elsewhere only in
       // its derivatives; the point is the same)
       s.point.push_back(c.point(u));
-      if (k == 0) continue;
-      const double length_mm = gauss_length(c, s.u[s.u.size() - 2], u);
-      const double chord_mm = (s.point.back() - s.point[s.point.size() - 2]).norm();
-      s.length_mm.push_back(length_mm);
-      s.radius_mm.push_back(0.5 * std::sqrt(std::max(0.0, length_mm * length_mm - chord_mm * chord_mm)));
+      if (k > 0) s.bound.push_back(interval_bound(c, s.u[s.u.size() - 2], u, s.point[s.point.size() - 2], s.point.back()));
     }
   return s;
+}
+
+double Checker::project_on(std::size_t n, const Vec3& p, double u_hint) {
+  return project(*moves_[n].curve, spans_of(n), [&]() -> const detail::CurveSamples& { return samples_of(n); }, p, u_hint);
 }
 
 const std::vector<double>& Checker::corners_of(std::size_t i) {
@@ -484,7 +476,7 @@ std::size_t Checker::match(const Sample& s, const Vec3& p, double& u, double& d)
     // The planner's setpoint names its move.
     const std::size_t m = s.move;
     const Curve& c = *moves_[m].curve;
-    u = project(c, spans_of(m), [&]() -> const detail::CurveSamples& { return samples_of(m); }, p, m == m_prev_ && k > 0 ? u_prev_ : c.u_min());
+    u = project_on(m, p, m == m_prev_ && k > 0 ? u_prev_ : c.u_min());
     d = (c.point(u) - p).norm();
     return m;
   }
@@ -500,7 +492,7 @@ std::size_t Checker::match(const Sample& s, const Vec3& p, double& u, double& d)
       }
   }
   const Curve* c = moves_[m].curve.get();
-  u = project(*c, spans_of(m), [&]() -> const detail::CurveSamples& { return samples_of(m); }, p, m == m_prev_ && k > 0 ? u_prev_ : c->u_min());
+  u = project_on(m, p, m == m_prev_ && k > 0 ? u_prev_ : c->u_min());
   d = (c->point(u) - p).norm();
   // A setpoint whose line is no move's (a dwell) stays where the motion stopped; one on a known
   // line looks among the following moves of the same line only.
@@ -509,7 +501,7 @@ std::size_t Checker::match(const Sample& s, const Vec3& p, double& u, double& d)
   for (std::size_t n = m + 1; n < moves_.size() && n <= m + 8 && (on_line || !line_known); ++n) {
     if (on_line && moves_[n].source_line != s.source_line) break;
     const Curve& cn = *moves_[n].curve;
-    const double un = project(cn, spans_of(n), [&]() -> const detail::CurveSamples& { return samples_of(n); }, p, cn.u_min());
+    const double un = project_on(n, p, cn.u_min());
     const double dn = (cn.point(un) - p).norm();
     if (dn < d || (dn <= d && un > cn.u_min())) {
       m = n;

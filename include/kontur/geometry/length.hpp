@@ -43,6 +43,11 @@ enum class SimpsonScheme {
 [[nodiscard]] LengthResult gauss_kronrod_length(const Curve& curve, double u0, double u1,
                                                 double relative_tolerance = tolerances::length_relative);
 
+/// Length [mm] of [u0, u1] by the fixed rule of one level of the nested rules (level 0: the
+/// 7-point Gauss rule; 1..3: 15, 31, 63 points), with no error control: an estimate for a short
+/// interval whose speed is smooth (the arc-length table's partial intervals, the checker's bounds).
+[[nodiscard]] double fixed_rule_length(const Curve& curve, double u0, double u1, int level = 0) noexcept;
+
 /// Length [mm] of the whole curve by the default method.
 [[nodiscard]] double length(const Curve& curve);
 

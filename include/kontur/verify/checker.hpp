@@ -115,15 +115,20 @@ struct Report {
 struct PathIndex;
 
 namespace detail {
+/// A piece of a curve between two parameters: its arc length L (the 7-point Gauss rule,
+/// fixed_rule_length) and the radius sqrt(L^2 - chord^2) / 2 of the capsule around its chord
+/// that holds it [mm].
+struct IntervalBound {
+  double length_mm = 0.0;
+  double radius_mm = 0.0;
+};
 /// A move's curve sampled for the checker's projection, computed once per move (and kept for the
-/// last few moves): 17 samples of every span, and each of the 16 sample intervals' arc length
-/// (5-point Gauss) and the radius of the capsule around its chord that holds it.
+/// last few moves): 17 samples of every span, and the bound of each of its 16 sample intervals.
 struct CurveSamples {
   std::size_t move = static_cast<std::size_t>(-1);
-  std::vector<double> u;           // 17 per span
-  std::vector<Vec3> point;         // C(u) [mm]
-  std::vector<double> length_mm;   // 16 per span
-  std::vector<double> radius_mm;   // 16 per span: sqrt(L^2 - chord^2) / 2
+  std::vector<double> u;               // 17 per span
+  std::vector<Vec3> point;             // C(u) [mm]
+  std::vector<IntervalBound> bound;    // 16 per span
 };
 }  // namespace detail
 
@@ -159,6 +164,8 @@ class Checker {
   };
   [[nodiscard]] const std::vector<double>& spans_of(std::size_t move);
   [[nodiscard]] const detail::CurveSamples& samples_of(std::size_t move);
+  // The parameter of the point of move n nearest to p (the projection, from u_hint).
+  [[nodiscard]] double project_on(std::size_t n, const Vec3& p, double u_hint);
   // The move's corners, computed once: where its curve stands still (C' = 0: a cusp or a repeated
   // control point, where the planner stops) or its tangent jumps at a breakpoint (a double knot, a
   // degree-1 spline): the setpoints cut them as they cut a corner between two moves.
