@@ -235,8 +235,9 @@ inline constexpr double plan_centripetal_shares[] = {0.5, 0.7, 0.9};
 inline constexpr int plan_samples_per_span = 16;
 /// How many (|t_i|, |K_i|) pairs per axis a stretch keeps to bound its acceleration
 /// (plan::PathGeometry::pairs): more pairs follow a curve's trade of tangent against curvature
-/// more closely (with 16, a 270-degree arc keeps 0.84, 0.74 and 0.73 of sqrt(1 - c^2) A at the
-/// shares c = 0.5, 0.7, 0.9: Constraints.ArcKeepsTheAccelerationItsTangentAndCurvatureLeaveTogether).
+/// more closely (with 16, a 270-degree arc of radius 20 mm keeps 0.92, 0.88 and 0.73 of
+/// sqrt(1 - c^2) A at the shares c = 0.5, 0.7, 0.9, against at most 0.58, 0.42 and 0.23 of it with the
+/// maxima alone: Constraints.ArcKeepsTheAccelerationItsTangentAndCurvatureLeaveTogether).
 inline constexpr int plan_acceleration_pairs = 16;
 inline constexpr double plan_sample_margin = 0.05;
 /// A point where a curve's parametric speed |C'| is at most this share of its largest over the
