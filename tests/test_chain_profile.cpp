@@ -78,6 +78,40 @@ TEST(ChainProfile, RisesToEachPiecesOwnCapAndIsFasterThanTheSmallestCap) {
   EXPECT_NEAR(p->sample(p->time_at(17.0)).v, 100.0, 1e-6);
 }
 
+// G6_Curva_Delfino's 190 mm spline (block 13) on the jerk = A/T machine: the long stretch at
+// 4.83 mm/s ends in a 2.6 um one at 3.51 mm/s, and the chain must end at 1 mm/s. The braking
+// phase towards the end crosses the junction at 1.9 mm/s, below the smaller cap; judging the whole
+// phase by its top speed (4.3 mm/s) against the smaller cap refused the profile, and the whole
+// 190 mm ran at 3.51 mm/s (54.3 s in place of 39.7 s).
+TEST(ChainProfile, BrakingPhaseMayCrossIntoALowerCapOnceBelowIt) {
+  const std::vector<CapStretch> st{{190.446437974, 4.83333}, {0.00258, 3.50654}};
+  const PathLimits l{3.50654, 723.787, 534083.0};
+  const ScurveProfile flat = plan_scurve(190.449017974, 0.0, 1.0, l);
+  ASSERT_EQ(flat.end_velocity(), 1.0);
+  const auto p = plan_chain_profile(st, 0.0, 1.0, l, 0.000338798, flat.duration());
+  ASSERT_TRUE(p.has_value());
+  expect_valid(*p, st, 0.0, 1.0, l);
+  EXPECT_LT(p->duration(), 0.74 * flat.duration());
+  // it cruises near the long stretch's cap (the stepped profile stays within 1 % below it)
+  const double v_mid = p->sample(p->time_at(100.0)).v;
+  EXPECT_GT(v_mid, 0.99 * 4.83333);
+  EXPECT_LE(v_mid, 4.83333);
+}
+
+// From 3D_Chips: braking from 30 mm/s for a junction at 20.714 mm/s that lies 0.06 mm before one
+// at 20.369 mm/s. Landing on the first at its own speed (and zero acceleration) left the second out
+// of reach (braking by 0.35 mm/s takes 0.1 mm), and the chain fell back to the S-curve at its
+// smallest cap; the manoeuvre now aims past it, at the junction it could no longer meet.
+TEST(ChainProfile, ManoeuvreAimsPastAJunctionWhoseLandingLeavesTheNextOutOfReach) {
+  const std::vector<CapStretch> st{{1.0, 30.0}, {0.06, 20.714}, {1.0, 20.369}};
+  const PathLimits l{20.369, 271.0, 58795.0};
+  const ScurveProfile flat = plan_scurve(2.06, 20.0, 20.0, l);
+  const auto p = plan_chain_profile(st, 20.0, 20.0, l, 0.001, flat.duration());
+  ASSERT_TRUE(p.has_value());
+  expect_valid(*p, st, 20.0, 20.0, l);
+  EXPECT_LT(p->duration(), 0.96 * flat.duration());
+}
+
 TEST(ChainProfile, SeededRandomChainsKeepEveryCapAndLimit) {
   std::mt19937_64 rng(20261202);
   std::uniform_real_distribution<double> len(0.01, 5.0), cap(5.0, 200.0), acc(100.0, 3000.0), jr(0.002, 0.05);

@@ -60,7 +60,9 @@ Ease ease(const Kin& x, double max_jerk) {
 
 class ChainPlanner {
  public:
-  ChainPlanner(std::span<const CapStretch> stretches, double v0, double v1, const PathLimits& limits)
+  // cautious: aim each junction's speed so low that, landing there at zero acceleration, every
+  // later junction and the end stay in reach (slower, but it plans chains the other cannot).
+  ChainPlanner(std::span<const CapStretch> stretches, double v0, double v1, const PathLimits& limits, bool cautious)
       : v0_(v0), v1_(v1), a_(limits.max_acceleration), j_(limits.max_jerk) {
     bounds_.push_back(0.0);
     for (const CapStretch& c : stretches) {
@@ -71,6 +73,15 @@ class ChainPlanner {
     double top = 0.0;
     for (double c : caps_) top = std::max(top, c);
     slack_v_ = tolerances::chain_profile_speed_slack * top;
+    junction_speed_.assign(caps_.size() + 1, 0.0);
+    junction_speed_[caps_.size()] = v1_;
+    const PathLimits reach{top, a_, j_};
+    for (std::size_t m = caps_.size() - 1; m >= 1; --m)
+      junction_speed_[m] = std::min(caps_[m - 1], caps_[m]);
+    if (cautious)  // backwards: slow enough to brake to the next junction's speed within the stretch
+      for (std::size_t m = caps_.size() - 1; m >= 1; --m)
+        junction_speed_[m] = std::min(junction_speed_[m], reachable_velocity(junction_speed_[m + 1],
+                                                                             bounds_[m + 1] - bounds_[m], reach));
   }
 
   // Smallest cap over the open interval (a, b) of distance [mm].
@@ -87,12 +98,30 @@ class ChainPlanner {
     return static_cast<std::size_t>(it - (bounds_.begin() + 1));
   }
 
-  // Room left [mm] for the manoeuvre from x towards junction m (1 <= m < caps_.size(), speed at
-  // most min of both caps there) or the end (m = caps_.size(), speed exactly v1); negative if
-  // it no longer fits; +infinity if that junction does not ask for braking.
+  // The speed [mm/s] at junction m (1 <= m < caps_.size()): at most both caps; at the end
+  // (m = caps_.size()), exactly v1.
+  [[nodiscard]] double junction_speed(std::size_t m) const { return junction_speed_[m]; }
+
+  // The junction after `from` (or the end) with the least room from x, and that room [mm].
+  [[nodiscard]] std::pair<std::size_t, double> tightest_after(const Kin& x, const Ease& e, std::size_t from) const {
+    std::size_t bind = caps_.size();
+    double least = room(x, e, bind);
+    for (std::size_t m = from + 1; m < caps_.size(); ++m) {
+      const double r = room(x, e, m);
+      if (r < least) {
+        least = r;
+        bind = m;
+      }
+    }
+    return {bind, least};
+  }
+
+  // Room left [mm] for the manoeuvre from x towards junction m (speed at most junction_speed(m)
+  // there) or the end (speed exactly v1); negative if it no longer fits; +infinity if that
+  // junction does not ask for braking.
   [[nodiscard]] double room(const Kin& x, const Ease& e, std::size_t m) const {
     const bool end = m == caps_.size();
-    const double w = end ? v1_ : std::min(caps_[m - 1], caps_[m]);
+    const double w = junction_speed(m);
     if (!end && e.v_end <= w) return std::numeric_limits<double>::infinity();
     return bounds_[m] - x.s - e.distance_mm - velocity_change_distance(e.v_end, w, a_, j_);
   }
@@ -133,16 +162,16 @@ class ChainPlanner {
         break;
       }
       if (moved) continue;
-      // No step is safe: carry out the manoeuvre towards the junction that binds.
+      // No step is safe: carry out the manoeuvre towards the junction that binds. It lands there
+      // at zero acceleration; where a later junction could no longer be met from that landing,
+      // it aims at that one instead (passing the first below its cap, as fits() checks).
       const Ease e = ease(x, j_);
-      std::size_t bind = caps_.size();
-      double least = room(x, e, bind);
-      for (std::size_t m = stretch_at(x.s) + 1; m < caps_.size(); ++m) {
-        const double r = room(x, e, m);
-        if (r < least) {
-          least = r;
-          bind = m;
-        }
+      std::size_t bind = tightest_after(x, e, stretch_at(x.s)).first;
+      while (bind < caps_.size()) {
+        const Kin land{bounds_[bind], junction_speed(bind), 0.0};
+        const auto [next, r] = tightest_after(land, ease(land, j_), bind);
+        if (!(r < 0.0)) break;
+        bind = next;
       }
       if (e.duration_s > 0.0) {
         phases.push_back({t, {x.s, x.v, x.a, e.jerk}, e.jerk});
@@ -151,7 +180,7 @@ class ChainPlanner {
         x.a = 0.0;
       }
       const bool end = bind == caps_.size();
-      const double w = end ? v1_ : std::min(caps_[bind - 1], caps_[bind]);
+      const double w = junction_speed(bind);
       const double target = bounds_[bind], dist = target - x.s;
       if (!(dist >= 0.0) || x.v < 0.0) return std::nullopt;
       PathLimits l{std::max({x.v, w, x.v > slack_v_ ? 0.0 : cap_all}), a_, j_};
@@ -166,8 +195,10 @@ class ChainPlanner {
     return trajectory::PathProfile(std::move(phases), t, {length_, v1_, 0.0, 0.0});
   }
 
-  // Every phase below the caps of the stretches it runs through (a phase that ends or starts on
-  // a junction counts only to the stretches it runs inside), the speed never negative.
+  // Every phase below the cap of each stretch it runs through, over the part of it inside that
+  // stretch (a phase that ends or starts on a junction counts only to the stretches it runs
+  // inside; a braking phase may cross into a lower cap once its speed is below it), the speed
+  // never negative.
   [[nodiscard]] bool fits(const std::vector<ProfilePhase>& phases, double duration_s) const {
     const double ds = tolerances::chain_profile_boundary_mm;
     for (std::size_t k = 0; k < phases.size(); ++k) {
@@ -178,14 +209,38 @@ class ChainPlanner {
       const SpeedRange r = speed_range(x, p.jerk, dt, y);
       if (r.lo < -slack_v_ || std::abs(x.a) > a_ * (1.0 + 1e-9) || std::abs(p.jerk) > j_ * (1.0 + 1e-9)) return false;
       const double lo = std::min(x.s + ds, 0.5 * (x.s + y.s)), hi = std::max(y.s - ds, 0.5 * (x.s + y.s));
-      if (r.hi > min_cap(lo, hi) + slack_v_) return false;
+      const std::size_t first = stretch_at(lo), last = stretch_at(hi);
+      if (first == last) {
+        if (r.hi > caps_[first] + slack_v_) return false;
+        continue;
+      }
+      // Crossing junctions: each part against its own stretch's cap.
+      double t_a = 0.0;
+      for (std::size_t m = first; m <= last; ++m) {
+        const double t_b = m == last ? dt : crossing_time(x, p.jerk, dt, bounds_[m + 1]);
+        const Kin a = advance(x, p.jerk, t_a), b = advance(x, p.jerk, t_b);
+        if (speed_range(a, p.jerk, t_b - t_a, b).hi > caps_[m] + slack_v_) return false;
+        t_a = t_b;
+      }
     }
     return true;
   }
 
+  // The time [s] within [0, dt] at which a phase of jerk j from x reaches distance s_mm (its
+  // distance does not fall: the speed is not negative), by bisection to the last bit.
+  [[nodiscard]] static double crossing_time(const Kin& x, double j, double dt, double s_mm) {
+    double lo = 0.0, hi = dt;
+    for (int it = 0; it < 200; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      if (mid <= lo || mid >= hi) break;
+      (advance(x, j, mid).s < s_mm ? lo : hi) = mid;
+    }
+    return hi;
+  }
+
  private:
   double v0_, v1_, a_, j_;
-  std::vector<double> bounds_, caps_;
+  std::vector<double> bounds_, caps_, junction_speed_;  // junction_speed_[m]: at bounds_[m], m >= 1
   double length_ = 0.0, slack_v_ = 0.0;
 };
 
@@ -196,7 +251,8 @@ std::optional<trajectory::PathProfile> plan_chain_profile(std::span<const CapStr
                                                           double time_bound_s) {
   if (stretches.empty() || !(step_s > 0.0) || !(limits.max_acceleration > 0.0) || !(limits.max_jerk > 0.0))
     return std::nullopt;
-  return ChainPlanner(stretches, v0, v1, limits).plan(step_s, time_bound_s);
+  if (auto p = ChainPlanner(stretches, v0, v1, limits, false).plan(step_s, time_bound_s)) return p;
+  return ChainPlanner(stretches, v0, v1, limits, true).plan(step_s, time_bound_s);
 }
 
 }  // namespace kontur::plan
