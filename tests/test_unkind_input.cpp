@@ -258,6 +258,15 @@ TEST(UnkindInput, NurbsStartingOnAThriceRepeatedPointKeepsTheJerkOfY) {  // seed
       "X103.437769 Y-2.799143 P100\nG5.3\nM2\n");
 }
 
+TEST(UnkindInput, JerkAtItsLimitOnAShortPeriodIsNotFlaggedForTheRoundingOfPositions) {  // seed 11218
+  // Y's jerk 26.7 mm/s^3 at T = 125 us: one ulp of a position near 8.9 mm is 3.4e-5 of the limit
+  // in the jerk's difference. The line's jerk is at its limit, and positions rounded by a little
+  // over 1 ulp read as 1.0000013 times it (tolerances::check_position_rounding_ulps).
+  expect_passes_on_machine(
+      "seed11218", machine_toml(125e-6, 0.0092406, {{{46.2128, 67.833, 110.5}, {202.2548, 25.035, 26.7}, {538.9794, 224.846, 64180}}}),
+      "G21 G90 G94 G17 G61\nF397.983038\nG1 X0.235275 Y8.893015 Z-0.608631\nM2\n");
+}
+
 TEST(UnkindInput, DegreeNineNurbsWithASpikeOfSpeedAtItsEndHasItsTrueLength) {  // seed 181: jerk 3.4x
   // Its weights 100, 100, 0.59 put a spike of |C'| in the last 1e-3 of the last span; the length
   // integration took it for rounding noise, the table's length was 1.4e-9 mm long, and the tool

@@ -390,6 +390,13 @@ inline constexpr double check_resync_mm = 1e-6;
 /// chord check (checker): the setpoints on either side are measured against chords through it, as
 /// at a corner between two moves (a degree-1 or double-knot spline has corners inside one move).
 inline constexpr double check_corner_tangent_jump = 1e-3;
+/// The rounding the checker allows each setpoint's position before its finite differences
+/// count against a limit, in units in the last place of the largest position of the difference:
+/// a position is a sum of rounded terms (start plus a rounded distance along a rounded
+/// direction), off by up to about 2 ulps, so a jerk difference (weights 1 3 3 1) may be off by 16.
+/// With 1 ulp per position, a 8.9 mm line on Y with jerk 26.7 mm/s^3 at T = 125 us read as
+/// 1.0000013 times its jerk (property seed 11218): one ulp there is 3.4e-5 of the limit.
+inline constexpr double check_position_rounding_ulps = 2.0;
 /// The checker's projection of a setpoint on its move searches finer than its 17 samples per span
 /// only where the nearest point those samples find is farther than this [mm] (a setpoint on the
 /// path is found within 1e-12 mm by them almost always; the path-error alarm is at 1e-6 mm) ...

@@ -590,8 +590,10 @@ void Checker::add(const Sample& s) {
     if (k >= 2) x_max = std::max(x_max, std::abs(p2[i]));
     if (k >= 3) x_max = std::max(x_max, std::abs(p3[i]));
     const double ulp = std::nextafter(x_max, std::numeric_limits<double>::infinity()) - x_max;
+    constexpr double rounding = tolerances::check_position_rounding_ulps;
     // a backward difference d [mm] over Tn = T^n against the limit: its ratio, and the ratio less
-    // the `ulps` that rounding the positions alone can make of it
+    // the `ulps` that rounding the positions alone can make of it (the sum of the difference's
+    // weights times check_position_rounding_ulps)
     const auto measure = [&](double d, double Tn, double ulps, double limit, double& max_ratio, double& max_excess) {
       const double ratio = d / Tn / limit;
       max_ratio = std::max(max_ratio, ratio);
@@ -599,13 +601,13 @@ void Checker::add(const Sample& s) {
       return ratio;
     };
     if (k >= 1)
-      sm_.velocity_ratio = std::max(sm_.velocity_ratio, measure(std::abs(p0[i] - p1[i]), T, 2.0,
+      sm_.velocity_ratio = std::max(sm_.velocity_ratio, measure(std::abs(p0[i] - p1[i]), T, 2.0 * rounding,
                                                                 ax.limits->max_velocity, ax.max_v, ax.excess_v));
     if (k >= 2)
-      sm_.acceleration_ratio = std::max(sm_.acceleration_ratio, measure(std::abs(p0[i] - 2 * p1[i] + p2[i]), T * T, 4.0,
+      sm_.acceleration_ratio = std::max(sm_.acceleration_ratio, measure(std::abs(p0[i] - 2 * p1[i] + p2[i]), T * T, 4.0 * rounding,
                                                                         ax.limits->max_acceleration, ax.max_a, ax.excess_a));
     if (k >= 3)
-      sm_.jerk_ratio = std::max(sm_.jerk_ratio, measure(std::abs(p0[i] - 3 * p1[i] + 3 * p2[i] - p3[i]), T * T * T, 8.0,
+      sm_.jerk_ratio = std::max(sm_.jerk_ratio, measure(std::abs(p0[i] - 3 * p1[i] + 3 * p2[i] - p3[i]), T * T * T, 8.0 * rounding,
                                                         ax.limits->max_jerk, ax.max_j, ax.excess_j));
   }
   double u = 0.0, d = 0.0;
