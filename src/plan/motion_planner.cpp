@@ -336,8 +336,16 @@ void MotionPlanner::add_piece(Piece piece) {
     // it, and breaking their chains slows them.)
     const double a_lo = std::min(open_.pieces.front().limits.max_acceleration, piece.limits.max_acceleration),
                  a_hi = std::max(open_.pieces.front().limits.max_acceleration, piece.limits.max_acceleration);
+    // Keeping the piece costs the time of running the whole chain at the smaller cap (less what
+    // the chain's profile wins back); closing costs about a change of speed between the caps.
+    const double length = open_.length_mm + piece.length_mm,
+                 own_time = open_.own_time_s + (lo > 0.0 ? piece.length_mm / piece.limits.max_velocity : 0.0);
+    const double change_s = velocity_change_time(
+        lo, hi, a_lo, std::min(open_.pieces.front().limits.max_jerk, piece.limits.max_jerk));
+    const bool costly = lo > 0.0 && length / lo - own_time > std::max(tolerances::plan_chain_close_time_loss * own_time,
+                                                          tolerances::plan_chain_close_change_share * change_s);
     // Pieces of different speeds each keep their own cap; a chain is bounded in length.
-    if (hi > tolerances::plan_piece_cap_ratio * lo || a_hi > tolerances::plan_chain_limit_ratio * a_lo ||
+    if (costly || hi > tolerances::plan_piece_cap_ratio * lo || a_hi > tolerances::plan_chain_limit_ratio * a_lo ||
         open_.pieces.size() >= tolerances::plan_chain_max_pieces)
       close_chain(std::numeric_limits<double>::infinity());
   }
@@ -347,6 +355,8 @@ void MotionPlanner::add_piece(Piece piece) {
     open_.min_cap_mm_s = std::min(open_.min_cap_mm_s, piece.limits.max_velocity);
     open_.max_cap_mm_s = std::max(open_.max_cap_mm_s, piece.limits.max_velocity);
   }
+  open_.length_mm += piece.length_mm;
+  if (piece.limits.max_velocity > 0.0) open_.own_time_s += piece.length_mm / piece.limits.max_velocity;
   open_.pieces.push_back(std::move(piece));
 }
 

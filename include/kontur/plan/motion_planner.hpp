@@ -71,6 +71,8 @@ class MotionPlanner {
   struct Chain {
     std::vector<Piece> pieces;
     double min_cap_mm_s = 0.0, max_cap_mm_s = 0.0;
+    double length_mm = 0.0;    // of its pieces
+    double own_time_s = 0.0;   // each piece's length at its own cap, summed
     PathLimits limits;  // what the look-ahead planned it with (set when closed)
   };
   // Adds a piece to the open chain (closing it first if the piece's cap does not fit).
