@@ -267,6 +267,16 @@ TEST(UnkindInput, JerkAtItsLimitOnAShortPeriodIsNotFlaggedForTheRoundingOfPositi
       "G21 G90 G94 G17 G61\nF397.983038\nG1 X0.235275 Y8.893015 Z-0.608631\nM2\n");
 }
 
+TEST(UnkindInput, ALineOfOneUlpLeftByARelativeStepIsNoMove) {  // seed 3922: jerk of Z 1.0068x
+  // The G91 step ends 1 ulp (8.9e-16 mm) from the absolute point the next line names: that line
+  // was planned as a piece whose corner let the tool arrive at 5.6e-5 mm/s, while the rapid after
+  // it started from rest.
+  expect_passes_on_machine(
+      "seed3922", machine_toml(0.5e-3, 0.0039345, {{{1711.9838, 579.37, 32855.5}, {1711.9838, 579.37, 23404.1}, {537.1976, 283.928, 2328.3}}}),
+      "G21 G90 G94 G17 G64\nG0 X-8.175476 Y6.647356 Z-4.93326\nG1 X-3.676589 Y5.354406 Z-5.557826 F609.376716\n"
+      "G91 G1 X-0.081451 Y-0.158327 Z0.097992 F32.410791\nG90\nG1 X-3.75804 Y5.196079 Z-5.459834\nG0 Z-4.459834\nM2\n");
+}
+
 TEST(UnkindInput, DegreeNineNurbsWithASpikeOfSpeedAtItsEndHasItsTrueLength) {  // seed 181: jerk 3.4x
   // Its weights 100, 100, 0.59 put a spike of |C'| in the last 1e-3 of the last span; the length
   // integration took it for rounding noise, the table's length was 1.4e-9 mm long, and the tool

@@ -276,6 +276,10 @@ inline constexpr int plan_span_max_pieces = 256;
 /// setpoints: a position noise e [mm] (the arc-length inverse is accurate to about 1e-13 of a
 /// move's length) shows as 8 e / T^3 of jerk, 1e-6 of the limit already at e = 1e-11 mm, T = 1 ms.
 inline constexpr double plan_limit_safety = 1e-4;
+/// A move of the tool (extra axes standing still) no longer than this many units in the last
+/// place of its largest end coordinate is rounding: the planner takes it for a move of zero
+/// length (skipped; the gap it leaves is within the checker's rounding allowance).
+inline constexpr double plan_rounding_move_ulps = 4.0;
 /// A speed profile whose phases, run to its end time, cover its distance to within this share are
 /// stretched onto it exactly (trajectory::PathProfile); a larger difference is left to the clamp.
 inline constexpr double profile_end_rescale_relative = 1e-9;

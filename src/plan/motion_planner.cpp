@@ -223,6 +223,13 @@ Machine planning_machine(Machine m) {
   return m;
 }
 
+// The length [mm] at or below which a move is the rounding of its coordinates:
+// tolerances::plan_rounding_move_ulps units in the last place of its largest end coordinate.
+double rounding_length(const Curve& c) {
+  const double x = std::max(c.point(c.u_min()).cwiseAbs().maxCoeff(), c.point(c.u_max()).cwiseAbs().maxCoeff());
+  return tolerances::plan_rounding_move_ulps * (std::nextafter(x, std::numeric_limits<double>::infinity()) - x);
+}
+
 }  // namespace
 
 MotionPlanner::MotionPlanner(const Machine& machine, trajectory::Trajectory& out)
@@ -247,7 +254,11 @@ void MotionPlanner::push(const program::Move& move) {
   } else {
     table = std::make_shared<const ArcLengthTable>(c);
     length = table->length_mm();
-    if (!(length > 0.0)) return;
+    // A move of a few ulps (a G91 step that lands back on an absolute end leaves one: 8.9e-16 mm
+    // near 5.46 mm) has no direction to go along; as a piece, the corner before it let the tool
+    // arrive at a speed the corner after it (a stop) did not, and the jerk jumped 1.0034 times
+    // its limit (property seed 3922). It is no move, as one of zero length.
+    if (!(length > rounding_length(c))) return;
     pieces = split_move(c, *table, move.feed_mm_s, machine_);
   }
   // The extra axes' rates dq/ds (signed), constant along the move.
