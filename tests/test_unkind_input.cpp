@@ -277,6 +277,16 @@ TEST(UnkindInput, ALineOfOneUlpLeftByARelativeStepIsNoMove) {  // seed 3922: jer
       "G91 G1 X-0.081451 Y-0.158327 Z0.097992 F32.410791\nG90\nG1 X-3.75804 Y5.196079 Z-5.459834\nG0 Z-4.459834\nM2\n");
 }
 
+TEST(UnkindInput, TangentComponentPeakingBetweenSamplesKeepsTheVelocityOfX) {  // seed 21228: 1.00026x
+  // A degree-2 NURBS with weight 0.071: X's tangent component peaks between two samples above
+  // both, where its range over the samples is small; the velocity cap took the samples' maximum.
+  expect_passes_on_machine(
+      "seed21228", machine_toml(179e-6, 0.0015937, {{{0.2054, 4.344, 23374.4}, {10.7729, 124.058, 693344.3}, {10.7729, 124.058, 728392.9}}}),
+      "G21 G90 G94 G17 G64\nF7877.69956\nG6.2 P3 K-4.722477 X0 Y0 Z0 R1 F6244.184187\n"
+      "K-4.722477 X-0.12182 Y0.148229 Z0\nK-4.722477 X-0.278003 Y0.138014 Z0 R0.071011\n"
+      "K-2.833017 X-0.441614 Y0.184142 Z0\nG6.2 K-2.722477\nG6.2 K-2.722477\nG6.2 K-2.722477\nM2\n");
+}
+
 TEST(UnkindInput, DegreeNineNurbsWithASpikeOfSpeedAtItsEndHasItsTrueLength) {  // seed 181: jerk 3.4x
   // Its weights 100, 100, 0.59 put a spike of |C'| in the last 1e-3 of the last span; the length
   // integration took it for rounding noise, the table's length was 1.4e-9 mm long, and the tool
