@@ -11,6 +11,7 @@
 
 #include "support/input_error.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -152,6 +153,35 @@ TEST(Constraints, PairedBoundHoldsAtEveryPointOfRandomNurbs) {
   }
   EXPECT_LE(worst, 1.0 + 1e-9);
   EXPECT_GE(worst, 0.9);  // (and the bound is not slack everywhere)
+}
+
+// On a circle of radius R the curvature vector turns at |dK/ds| = 1/R^2, so K'_i v^3 caps the
+// speed where the jerk is small against the acceleration. A piece inside a chain (ends weighed
+// little) may give that term more of the jerk than the first share, as long as the path keeps
+// plan_path_jerk_share_min of it; next to a junction that takes half the jerk it may not. Either
+// way every axis's jerk t_i j + 3 K_i v a + K'_i v^3 stays within its limit at every point.
+TEST(Constraints, CurvatureChangeTakesALargerShareInsideAChainAndNeverMoreThanTheJerkLeaves) {
+  const Machine m = full_machine();  // A = 2000 mm/s^2, J = 50000 mm/s^3 per axis
+  const double R = 2.0, A = 2000.0, J = 50000.0;
+  const HelixArc arc(CircleFrame{}, R, 2.0 * std::numbers::pi);
+  const PathGeometry g = path_geometry(arc, arc.u_min(), arc.u_max());
+  const double first = std::cbrt(tolerances::plan_curvature_rate_jerk_shares[0] * J * R * R);
+  const double largest = std::cbrt(std::ranges::max(tolerances::plan_curvature_rate_jerk_shares) * J * R * R);
+  ASSERT_LT(largest, std::sqrt(tolerances::plan_centripetal_shares[2] * A * R));  // the rate binds
+  const PathLimits inside = path_limits(g, arc.length_mm(), 1e4, m, 0.0, 2 * tolerances::plan_share_choice_change_weight);
+  const PathLimits beside = path_limits(g, arc.length_mm(), 1e4, m, tolerances::plan_smooth_junction_jerk_share, 1.0);
+  EXPECT_GT(inside.max_velocity, first * 1.2);
+  EXPECT_LE(inside.max_velocity, largest * (1 + 1e-12));
+  EXPECT_LE(beside.max_velocity, first * (1 + 1e-12));
+  for (const auto& [l, share] : {std::pair{inside, 0.0}, std::pair{beside, tolerances::plan_smooth_junction_jerk_share}}) {
+    ASSERT_GT(l.max_jerk, 0.0);
+    const double v = l.max_velocity, a = l.max_acceleration, j = l.max_jerk;
+    for (int k = 0; k < 720; ++k) {  // axis X at angle theta (Y is the same shifted by 90 degrees)
+      const double th = 2.0 * std::numbers::pi * k / 720.0, st = std::abs(std::sin(th)), ct = std::abs(std::cos(th));
+      EXPECT_LE(st * a + ct / R * v * v, A * (1 + 1e-12)) << th;
+      EXPECT_LE(st * j + 3.0 * ct / R * v * a + st / (R * R) * v * v * v, (1.0 - share) * J * (1 + 1e-12)) << th;
+    }
+  }
 }
 
 }  // namespace

@@ -207,6 +207,12 @@ inline constexpr double arc_end_point_relative = 1e-12;
 inline constexpr double plan_cross_jerk_share = 0.2;
 /// Share of an axis's jerk for the curvature-change term K'_i v^3 (caps the speed on curves).
 inline constexpr double plan_curvature_rate_jerk_share = 0.2;
+/// The shares of the curvature-change term a stretch may choose from (the one with the shortest
+/// estimated time), where the path keeps at least plan_path_jerk_share_min of the axis's jerk:
+/// on the smoothed random_lines the curvature change caps the speed, not the centripetal term.
+/// The first is the share where a junction's jerk share leaves no room for more.
+inline constexpr double plan_curvature_rate_jerk_shares[] = {0.2, 0.4, 0.6};
+inline constexpr double plan_path_jerk_share_min = 0.1;
 /// Share of an axis's jerk a junction may use when its direction changes by less than
 /// plan_small_corner (per axis, |t2 - t1|) or only its curvature jumps: its speed matters, and the
 /// moves on both sides plan with the rest.
@@ -228,6 +234,14 @@ inline constexpr double plan_corner_step_jerk_ramp = 0.5;
 /// Fractions of an axis's acceleration the centripetal part may take on a curve; the planner takes
 /// the one that gives the shortest time for the piece (the rest is left for the path acceleration).
 inline constexpr double plan_centripetal_shares[] = {0.5, 0.7, 0.9};
+/// The time a piece is estimated at, to choose its shares: its length at its cap plus a weight of
+/// the time a change from rest to the cap takes, half of it for each end of the piece where its
+/// chain starts or ends (a stop, a corner, a curvature jump), this for each end inside a chain,
+/// which changes its speed at its ends only. On XYZ.ini, with both ends weighed alike, 0.01-0.03
+/// gave 3D_Chips 98.2-98.8 s, random_lines (G20) 19.6-20.1 s, circle_small_segments 2.74-2.77 s;
+/// 0.5 gave 103.4 / 23.9 / 2.78 s, none (the largest cap) 107.1 / 19.7 / 3.41 s (the acceleration
+/// left too small); but arcs between corners slowed by up to 26 % with it (arc-arc-sawtooth).
+inline constexpr double plan_share_choice_change_weight = 0.01;
 /// Samples per span of a curve when its geometry (tangent, curvature, curvature change) is
 /// bounded (more where the tangent turns by over 0.2 rad between samples), and the share of each
 /// sampled quantity's range its maximum is raised by (a smooth peak between samples turned by

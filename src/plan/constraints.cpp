@@ -304,7 +304,8 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
   }
 }
 
-double speed_cap(const PathGeometry& g, double feed_mm_s, const Machine& machine, double centripetal_share) noexcept {
+double speed_cap(const PathGeometry& g, double feed_mm_s, const Machine& machine, double centripetal_share,
+                 double curvature_rate_share) noexcept {
   const LinearAxes axes = linear_axes(machine);
   // A move of extra axes alone (the tool point stands) runs at its feed [deg/s] or [mm/s] within the
   // axes' own velocities: the machine's max feed is a tool path speed.
@@ -319,7 +320,7 @@ double speed_cap(const PathGeometry& g, double feed_mm_s, const Machine& machine
     const auto e = static_cast<Eigen::Index>(i);
     if (g.curvature[e] > 0.0) v = std::min(v, std::sqrt(centripetal_share * axis->max_acceleration / g.curvature[e]));
     if (g.curvature_rate[e] > 0.0)
-      v = std::min(v, std::cbrt(tolerances::plan_curvature_rate_jerk_share * axis->max_jerk / g.curvature_rate[e]));
+      v = std::min(v, std::cbrt(curvature_rate_share * axis->max_jerk / g.curvature_rate[e]));
   }
   return std::min(v, chord_cap(g.max_kappa, machine));
 }
@@ -368,20 +369,35 @@ PathLimits limits_at_cap(const PathGeometry& g, double v, const Machine& machine
 }  // namespace
 
 PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s, const Machine& machine,
-                       double junction_jerk_share) noexcept {
+                       double junction_jerk_share, double change_weight) noexcept {
   PathLimits best;
   double best_time = kInf;
   const bool curved = !g.curvature.isZero();
   for (const double share : tolerances::plan_centripetal_shares) {
     if (!curved && share != tolerances::plan_centripetal_shares[0]) break;  // one choice on a line
-    const double v = speed_cap(g, feed_mm_s, machine, share);
-    const PathLimits l = limits_at_cap(g, v, machine, junction_jerk_share);
-    // Time estimate: the length at the cap, plus the time to reach the cap and leave it.
-    const double time =
-        v > 0.0 ? length_mm / v + (std::isfinite(l.max_acceleration) ? v / l.max_acceleration : 0.0) : kInf;
-    if (time < best_time || best_time == kInf) {
-      best_time = time;
-      best = l;
+    for (const double rate_share : tolerances::plan_curvature_rate_jerk_shares) {
+      // the path's own jerk keeps at least plan_path_jerk_share_min of every axis's
+      if (rate_share != tolerances::plan_curvature_rate_jerk_shares[0] &&
+          (!curved || rate_share > 1.0 - junction_jerk_share - tolerances::plan_cross_jerk_share -
+                                       tolerances::plan_path_jerk_share_min))
+        break;
+      const double v = speed_cap(g, feed_mm_s, machine, share, rate_share);
+      const PathLimits l = limits_at_cap(g, v, machine, junction_jerk_share);
+      // Time estimate: the length at the cap, plus change_weight times the time to reach the cap
+      // (jerk-limited: a / j more where the acceleration limit is reached, else 2 sqrt(v / j)).
+      double change = 0.0;
+      if (std::isfinite(l.max_acceleration) && l.max_acceleration > 0.0) {
+        change = v / l.max_acceleration;
+        if (std::isfinite(l.max_jerk) && l.max_jerk > 0.0)
+          change = v * l.max_jerk >= l.max_acceleration * l.max_acceleration
+                       ? v / l.max_acceleration + l.max_acceleration / l.max_jerk
+                       : 2.0 * std::sqrt(v / l.max_jerk);
+      }
+      const double time = v > 0.0 ? length_mm / v + change_weight * change : kInf;
+      if (time < best_time || best_time == kInf) {
+        best_time = time;
+        best = l;
+      }
     }
   }
   // A stretch along no axis the machine limits (or of speed 0): the first axis's limits.

@@ -281,9 +281,10 @@ void MotionPlanner::push(const program::Move& move) {
       in = tighter(junction(*last_end_, c.derivatives(c.u_min(), 2), machine_),
                    extra_axes_junction(last_rate_, rate, machine_));
     }
-    settle_last(in.jerk_share);
+    settle_last(in.jerk_share, in.smooth());
     if (!in.smooth()) close_chain(in.velocity);  // a corner or a curvature jump: the speed there is limited
   }
+  const bool continues_chain = !open_.pieces.empty();
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const MovePiece& p = pieces[i];
     const bool last = i + 1 == pieces.size();
@@ -305,6 +306,7 @@ void MotionPlanner::push(const program::Move& move) {
     piece.geometry = p.geometry;
     piece.feed_mm_s = move.feed_mm_s;
     piece.start_share = i == 0 ? in.jerk_share : pieces[i - 1].end.jerk_share;
+    piece.start_smooth = i == 0 ? continues_chain : pieces[i - 1].end.smooth();
     piece.length_mm = p.s1_mm - p.s0_mm;
     if (initial_hold_s_ > 0.0) {
       seg.hold_before_s = initial_hold_s_;
@@ -313,14 +315,14 @@ void MotionPlanner::push(const program::Move& move) {
       seg.hold_before_move = last_move_ != program::no_move ? last_move_ : move.id;
       initial_hold_s_ = 0.0;
     }
-    // The cap at the largest share a junction may take (the end of the last piece is not known
-    // yet); the limits become final when its end junction is known (settle_last).
-    piece.limits = path_limits(p.geometry, piece.length_mm, move.feed_mm_s, machine_,
-                               std::max({piece.start_share, last ? tolerances::plan_smooth_junction_jerk_share : 0.0,
-                                         last ? 0.0 : p.end.jerk_share}));
+    // The end junction of the last piece is not known yet: its limits are chosen for a smooth one
+    // and chosen anew when it is known (settle_last; the open chain is not yet in the look-ahead).
+    piece.planned_share = std::max(piece.start_share, last ? 0.0 : p.end.jerk_share);
+    piece.planned_end_smooth = last || p.end.smooth();
+    piece.limits = piece_limits(piece, piece.planned_share, piece.planned_end_smooth);
     add_piece(std::move(piece));
     if (!last) {
-      settle_last(p.end.jerk_share);
+      settle_last(p.end.jerk_share, p.end.smooth());
       if (!p.end.smooth()) close_chain(p.end.velocity);
     }
   }
@@ -331,7 +333,7 @@ void MotionPlanner::push(const program::Move& move) {
   last_exact_stop_ = move.exact_stop;
   last_move_ = move.id;
   if (move.exact_stop) {
-    settle_last(0.0);
+    settle_last(0.0, false);
     close_chain(0.0);
   }
   release_ready();
@@ -391,11 +393,37 @@ trajectory::PathProfile MotionPlanner::chain_profile(const Chain& chain, const S
   return trajectory::PathProfile(planned);
 }
 
-void MotionPlanner::settle_last(double end_share) {
+PathLimits MotionPlanner::piece_limits(const Piece& piece, double share, bool end_smooth) const {
+  const auto end_weight = [](bool smooth) {
+    return smooth ? tolerances::plan_share_choice_change_weight : 0.5;
+  };
+  return path_limits(piece.geometry, piece.length_mm, piece.feed_mm_s, machine_, share,
+                     end_weight(piece.start_smooth) + end_weight(end_smooth));
+}
+
+void MotionPlanner::settle_last(double end_share, bool end_smooth) {
   if (open_.pieces.empty()) return;
   Piece& p = open_.pieces.back();
-  const PathLimits l = path_limits_at(p.geometry, p.limits.max_velocity, machine_, std::max(p.start_share, end_share));
-  p.limits.max_jerk = std::max(p.limits.max_jerk, l.max_jerk);
+  const double share = std::max(p.start_share, end_share);
+  if (share == p.planned_share && end_smooth == p.planned_end_smooth) return;
+  // The open chain is not in the look-ahead yet: the piece's limits may still change either way.
+  p.planned_share = share;
+  p.planned_end_smooth = end_smooth;
+  const double old_cap = p.limits.max_velocity;
+  p.limits = piece_limits(p, share, end_smooth);
+  if (p.limits.max_velocity == old_cap) return;
+  // Its cap changed: it may no longer belong to the chain (add_piece decides anew).
+  Piece moved = std::move(p);
+  open_.pieces.pop_back();
+  open_.length_mm = open_.own_time_s = 0.0;
+  if (!open_.pieces.empty()) open_.min_cap_mm_s = open_.max_cap_mm_s = open_.pieces.front().limits.max_velocity;
+  for (const Piece& q : open_.pieces) {
+    open_.min_cap_mm_s = std::min(open_.min_cap_mm_s, q.limits.max_velocity);
+    open_.max_cap_mm_s = std::max(open_.max_cap_mm_s, q.limits.max_velocity);
+    open_.length_mm += q.length_mm;
+    if (q.limits.max_velocity > 0.0) open_.own_time_s += q.length_mm / q.limits.max_velocity;
+  }
+  add_piece(std::move(moved));
 }
 
 void MotionPlanner::close_chain(double end_velocity) {
@@ -418,7 +446,7 @@ void MotionPlanner::close_chain(double end_velocity) {
 void MotionPlanner::dwell(double seconds, long source_line) {
   if (finished_ || !(seconds > 0.0)) return;
   if (!open_.pieces.empty()) {
-    settle_last(0.0);  // it ends at rest: no junction
+    settle_last(0.0, false);  // it ends at rest: no junction
     close_chain(0.0);
   }
   last_exact_stop_ = true;  // the next move starts from rest
@@ -435,7 +463,7 @@ void MotionPlanner::dwell(double seconds, long source_line) {
 
 void MotionPlanner::finish() {
   if (!finished_ && !open_.pieces.empty()) {
-    settle_last(0.0);  // the last move ends at rest
+    settle_last(0.0, false);  // the last move ends at rest
     close_chain(0.0);
   }
   finished_ = true;

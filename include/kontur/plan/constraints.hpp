@@ -116,9 +116,10 @@ struct PathGeometry {
 /// The speed cap [mm/s] of a stretch: velocity_cap (the feed, the machine's max feed, every axis's
 /// velocity along the tangent; zero if the stretch moves an axis the machine lacks), the
 /// centripetal acceleration K_i v^2 <= share A_i, the curvature change
-/// K'_i v^3 <= plan_curvature_rate_jerk_share J_i and the chord-error limit (chord_cap).
+/// K'_i v^3 <= curvature_rate_share J_i and the chord-error limit (chord_cap).
 [[nodiscard]] double speed_cap(const PathGeometry& g, double feed_mm_s, const Machine& machine,
-                               double centripetal_share) noexcept;
+                               double centripetal_share,
+                               double curvature_rate_share = tolerances::plan_curvature_rate_jerk_share) noexcept;
 
 /// The speed cap [mm/s] of a whole curve at a programmed feed [mm/s] (speed_cap of its geometry
 /// sampled over its parameter range, the first centripetal share): what the corner blender's
@@ -130,9 +131,15 @@ struct PathGeometry {
 /// |t_i| a + K_i v^2 <= A_i, and |t_i| j + 3 K_i v a + K'_i v^3 <= (1 - junction_share) J_i, the
 /// cross term taking at most plan_cross_jerk_share. `junction_jerk_share` is the share of the
 /// junctions at the stretch's ends (see junction). Of the centripetal shares in
-/// tolerances::plan_centripetal_shares, the one with the shortest estimated time is taken.
+/// tolerances::plan_centripetal_shares and the curvature-change shares in
+/// tolerances::plan_curvature_rate_jerk_shares (those that leave the path at least
+/// plan_path_jerk_share_min of the jerk), the pair with the shortest estimated time is taken: the
+/// length at the cap plus `change_weight` times the time a change from rest to the cap takes (1:
+/// a stretch planned alone; the motion planner weighs each end of a piece inside a chain less,
+/// tolerances::plan_share_choice_change_weight).
 [[nodiscard]] PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s,
-                                     const Machine& machine, double junction_jerk_share) noexcept;
+                                     const Machine& machine, double junction_jerk_share,
+                                     double change_weight = 1.0) noexcept;
 
 /// The path limits of a stretch at a given speed cap [mm/s] (as path_limits, without choosing the
 /// centripetal share): raising the junction share lowers only the jerk.

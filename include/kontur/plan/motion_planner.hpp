@@ -60,8 +60,11 @@ class MotionPlanner {
     PathGeometry geometry;
     double feed_mm_s = 0.0;
     double start_share = 0.0;  // jerk share of the junction at its start
+    bool start_smooth = false;  // its start is inside a chain (a smooth junction)
+    double planned_share = 0.0;  // the junction share its limits were chosen for ...
+    bool planned_end_smooth = true;  // ... and whether its end was taken to be inside a chain
     double length_mm = 0.0;
-    PathLimits limits;  // its speed cap is final; its jerk rises once its end junction is known
+    PathLimits limits;  // final once its end junction is known (settle_last)
   };
   // Consecutive pieces joined by smooth junctions (tangent and curvature continuous) with similar
   // speed caps: one entry of the look-ahead, one S-curve over their summed length with the
@@ -82,7 +85,9 @@ class MotionPlanner {
   [[nodiscard]] trajectory::PathProfile chain_profile(const Chain& chain, const ScurveProfile& planned) const;
   [[nodiscard]] static std::vector<CapStretch> stretches_of(const Chain& chain);
   // The open chain's last piece gets its end junction's share; its limits become final.
-  void settle_last(double end_share);
+  void settle_last(double end_share, bool end_smooth);
+  // The limits of a piece whose ends have these junction shares and are or are not inside a chain.
+  [[nodiscard]] PathLimits piece_limits(const Piece& piece, double share, bool end_smooth) const;
   // Closes the open chain (its end speed at most `end_velocity`) and hands it to the look-ahead.
   void close_chain(double end_velocity);
   void release_ready();
