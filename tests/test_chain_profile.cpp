@@ -7,6 +7,7 @@
 #include <cmath>
 #include <kontur/plan/chain_profile.hpp>
 #include <kontur/trajectory/path_profile.hpp>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -65,14 +66,27 @@ void expect_valid(const PathProfile& p, const std::vector<CapStretch>& st, doubl
   EXPECT_EQ(end.a, 0.0);
 }
 
+// A chain's profile from v0 to v1 (checked by expect_valid where there is one) and the S-curve at
+// its smallest cap that it must beat.
+struct Planned {
+  std::optional<PathProfile> profile;
+  ScurveProfile flat;
+};
+Planned plan_checked(const std::vector<CapStretch>& st, double v0, double v1, const PathLimits& l, double step_s) {
+  double length_mm = 0.0;
+  for (const CapStretch& c : st) length_mm += c.length_mm;
+  Planned r{std::nullopt, plan_scurve(length_mm, v0, v1, l)};
+  r.profile = plan_chain_profile(st, v0, v1, l, step_s, r.flat.duration());
+  if (r.profile) expect_valid(*r.profile, st, v0, v1, l);
+  return r;
+}
+
 TEST(ChainProfile, RisesToEachPiecesOwnCapAndIsFasterThanTheSmallestCap) {
   // Slow, fast, slow: the S-curve at the smallest cap crawls through the fast middle.
   const std::vector<CapStretch> st{{2.0, 20.0}, {30.0, 100.0}, {2.0, 20.0}};
   const PathLimits l{20.0, 1000.0, 50000.0};
-  const ScurveProfile flat = plan_scurve(34.0, 10.0, 10.0, l);
-  const auto p = plan_chain_profile(st, 10.0, 10.0, l, 0.001, flat.duration());
+  const auto [p, flat] = plan_checked(st, 10.0, 10.0, l, 0.001);
   ASSERT_TRUE(p.has_value());
-  expect_valid(*p, st, 10.0, 10.0, l);
   EXPECT_LT(p->duration(), 0.5 * flat.duration());
   // It cruises at the middle cap.
   EXPECT_NEAR(p->sample(p->time_at(17.0)).v, 100.0, 1e-6);
@@ -86,11 +100,9 @@ TEST(ChainProfile, RisesToEachPiecesOwnCapAndIsFasterThanTheSmallestCap) {
 TEST(ChainProfile, BrakingPhaseMayCrossIntoALowerCapOnceBelowIt) {
   const std::vector<CapStretch> st{{190.446437974, 4.83333}, {0.00258, 3.50654}};
   const PathLimits l{3.50654, 723.787, 534083.0};
-  const ScurveProfile flat = plan_scurve(190.449017974, 0.0, 1.0, l);
+  const auto [p, flat] = plan_checked(st, 0.0, 1.0, l, 0.000338798);
   ASSERT_EQ(flat.end_velocity(), 1.0);
-  const auto p = plan_chain_profile(st, 0.0, 1.0, l, 0.000338798, flat.duration());
   ASSERT_TRUE(p.has_value());
-  expect_valid(*p, st, 0.0, 1.0, l);
   EXPECT_LT(p->duration(), 0.74 * flat.duration());
   // it cruises near the long stretch's cap (the stepped profile stays within 1 % below it)
   const double v_mid = p->sample(p->time_at(100.0)).v;
@@ -105,10 +117,8 @@ TEST(ChainProfile, BrakingPhaseMayCrossIntoALowerCapOnceBelowIt) {
 TEST(ChainProfile, ManoeuvreAimsPastAJunctionWhoseLandingLeavesTheNextOutOfReach) {
   const std::vector<CapStretch> st{{1.0, 30.0}, {0.06, 20.714}, {1.0, 20.369}};
   const PathLimits l{20.369, 271.0, 58795.0};
-  const ScurveProfile flat = plan_scurve(2.06, 20.0, 20.0, l);
-  const auto p = plan_chain_profile(st, 20.0, 20.0, l, 0.001, flat.duration());
+  const auto [p, flat] = plan_checked(st, 20.0, 20.0, l, 0.001);
   ASSERT_TRUE(p.has_value());
-  expect_valid(*p, st, 20.0, 20.0, l);
   EXPECT_LT(p->duration(), 0.96 * flat.duration());
 }
 
