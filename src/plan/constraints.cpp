@@ -119,8 +119,8 @@ void PathGeometry::set_pairs(int i, std::vector<std::array<double, 2>> points) {
 }
 
 void PathGeometry::drop_curvature() noexcept {
-  curvature = curvature_rate = Vec3::Zero();
-  max_kappa = 0.0;
+  curvature = curvature_rate = curvature_low = curvature_rate_low = Vec3::Zero();
+  max_kappa = kappa_low = 0.0;
   for (AxisPairs& p : pairs) p.n = 0;  // the maxima: max |t_i| with no curvature
 }
 
@@ -134,6 +134,9 @@ void PathGeometry::merge(const PathGeometry& o) {
   curvature = curvature.cwiseMax(o.curvature);
   curvature_rate = curvature_rate.cwiseMax(o.curvature_rate);
   max_kappa = std::max(max_kappa, o.max_kappa);
+  curvature_low = curvature_low.cwiseMin(o.curvature_low);
+  curvature_rate_low = curvature_rate_low.cwiseMin(o.curvature_rate_low);
+  kappa_low = std::min(kappa_low, o.kappa_low);
   for (std::size_t e = 0; e < extra_rate.size(); ++e) extra_rate[e] = std::max(extra_rate[e], o.extra_rate[e]);
 }
 
@@ -271,6 +274,9 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
     hi.curvature += m * (hi.curvature - lo.curvature);
     hi.curvature_rate += m * (hi.curvature_rate - lo.curvature_rate);
     hi.max_kappa += m * (hi.max_kappa - lo.max_kappa);
+    hi.curvature_low = lo.curvature;
+    hi.curvature_rate_low = lo.curvature_rate;
+    hi.kappa_low = lo.max_kappa;
     // The pairs (PathGeometry::pairs): one per interval between regular samples, bounding both
     // ends; a tangent component rises between them by at most 1 - cos(phi / 2) <= phi^2 / 8 above
     // the chord of its values (phi the turn between the samples, at most about 0.2 rad here),

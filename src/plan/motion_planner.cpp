@@ -33,7 +33,16 @@ void add_stretches(const Curve& c, double u0, double u1, const PathGeometry& g, 
   PathGeometry straight = g;
   straight.drop_curvature();
   const bool bent = cap < span_cap(straight, feed_mm_s, machine);
-  if (bent && depth < tolerances::plan_span_max_depth && budget > parts - 1) {
+  // No part can be plan_piece_cap_ratio times faster where even the smallest sampled curvature
+  // and curvature change would not raise the cap that much (the parts are then not sampled).
+  const auto may_pay = [&] {
+    PathGeometry easiest = g;
+    easiest.curvature = g.curvature_low;
+    easiest.curvature_rate = g.curvature_rate_low;
+    easiest.max_kappa = g.kappa_low;
+    return span_cap(easiest, feed_mm_s, machine) > tolerances::plan_piece_cap_ratio * cap;
+  };
+  if (bent && depth < tolerances::plan_span_max_depth && budget > parts - 1 && may_pay()) {
     std::array<double, parts + 1> us{};
     for (int i = 0; i <= parts; ++i) us[static_cast<std::size_t>(i)] = i == parts ? u1 : u0 + (u1 - u0) * i / parts;
     bool distinct = true;

@@ -80,6 +80,12 @@ struct PathGeometry {
   Vec3 curvature = Vec3::Zero();       ///< max |K_i| of the curvature vector K = kappa n [1/mm]
   Vec3 curvature_rate = Vec3::Zero();  ///< max |dK_i/ds| along the path [1/mm^2]
   double max_kappa = 0.0;              ///< largest curvature [1/mm] (for the chord error)
+  /// The smallest sampled |K_i| [1/mm], |dK_i/ds| [1/mm^2] and curvature [1/mm]: not bounds, what a
+  /// part of the stretch may get down to (zero where not known); split_move cuts a stretch into
+  /// parts only where these could raise a part's cap enough.
+  Vec3 curvature_low = Vec3::Zero();
+  Vec3 curvature_rate_low = Vec3::Zero();
+  double kappa_low = 0.0;
   /// |dq_e/ds| of each extra axis A B C [deg/mm] U V W [mm/mm] (they move linearly with the path
   /// distance: no curvature terms); ExtraAxes order.
   ExtraAxes extra_rate{};
