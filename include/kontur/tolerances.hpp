@@ -205,13 +205,13 @@ inline constexpr double arc_end_point_relative = 1e-12;
 // Each term gets a share of the axis's jerk limit; the shares of any one place add up to at most 1.
 /// Share of an axis's jerk for the cross term 3 K_i v a (caps the path acceleration on curves).
 inline constexpr double plan_cross_jerk_share = 0.2;
-/// Share of an axis's jerk for the curvature-change term K'_i v^3 (caps the speed on curves).
-inline constexpr double plan_curvature_rate_jerk_share = 0.2;
-/// The shares of the curvature-change term a stretch may choose from (the one with the shortest
-/// estimated time), where the path keeps at least plan_path_jerk_share_min of the axis's jerk:
-/// on the smoothed random_lines the curvature change caps the speed, not the centripetal term.
-/// The first is the share where a junction's jerk share leaves no room for more.
+/// The shares of an axis's jerk the curvature-change term K'_i v^3 (it caps the speed on curves)
+/// may take: a stretch chooses the one with the shortest estimated time, where the path keeps at
+/// least plan_path_jerk_share_min of the axis's jerk (on the smoothed random_lines the curvature
+/// change caps the speed, not the centripetal term). The first is the share where a junction's
+/// jerk share leaves no room for more, and the one estimates take (plan_curvature_rate_jerk_share).
 inline constexpr double plan_curvature_rate_jerk_shares[] = {0.2, 0.4, 0.6};
+inline constexpr double plan_curvature_rate_jerk_share = plan_curvature_rate_jerk_shares[0];
 inline constexpr double plan_path_jerk_share_min = 0.1;
 /// Share of an axis's jerk a junction may use when its direction changes by less than
 /// plan_small_corner (per axis, |t2 - t1|) or only its curvature jumps: its speed matters, and the

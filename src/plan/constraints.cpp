@@ -390,15 +390,10 @@ PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s
       const double v = speed_cap(g, feed_mm_s, machine, share, rate_share);
       const PathLimits l = limits_at_cap(g, v, machine, junction_jerk_share);
       // Time estimate: the length at the cap, plus change_weight times the time to reach the cap
-      // (jerk-limited: a / j more where the acceleration limit is reached, else 2 sqrt(v / j)).
-      double change = 0.0;
-      if (std::isfinite(l.max_acceleration) && l.max_acceleration > 0.0) {
-        change = v / l.max_acceleration;
-        if (std::isfinite(l.max_jerk) && l.max_jerk > 0.0)
-          change = v * l.max_jerk >= l.max_acceleration * l.max_acceleration
-                       ? v / l.max_acceleration + l.max_acceleration / l.max_jerk
-                       : 2.0 * std::sqrt(v / l.max_jerk);
-      }
+      // from rest (jerk-limited).
+      const double change = std::isfinite(l.max_acceleration) && l.max_acceleration > 0.0
+                                ? velocity_change_time(0.0, v, l.max_acceleration, l.max_jerk)
+                                : 0.0;
       const double time = v > 0.0 ? length_mm / v + change_weight * change : kInf;
       if (time < best_time || best_time == kInf) {
         best_time = time;

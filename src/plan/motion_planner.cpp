@@ -329,11 +329,8 @@ void MotionPlanner::push(const program::Move& move) {
     piece.planned_share = std::max(piece.start_share, last ? 0.0 : p.end.jerk_share);
     piece.planned_end_smooth = last || p.end.smooth();
     piece.limits = piece_limits(piece, piece.planned_share, piece.planned_end_smooth);
-    add_piece(std::move(piece));
-    if (!last) {
-      settle_last(p.end.jerk_share, p.end.smooth());
-      if (!p.end.smooth()) close_chain(p.end.velocity);
-    }
+    add_piece(std::move(piece));  // (an inner piece's end is known: its limits are final)
+    if (!last && !p.end.smooth()) close_chain(p.end.velocity);
   }
   last_end_ = c.derivatives_left(c.u_max(), 2);
   last_stationary_end_ = pieces.back().stationary_end;
@@ -371,15 +368,16 @@ void MotionPlanner::add_piece(Piece piece) {
         open_.pieces.size() >= tolerances::plan_chain_max_pieces)
       close_chain(std::numeric_limits<double>::infinity());
   }
-  if (open_.pieces.empty()) {
-    open_.min_cap_mm_s = open_.max_cap_mm_s = piece.limits.max_velocity;
-  } else {
-    open_.min_cap_mm_s = std::min(open_.min_cap_mm_s, piece.limits.max_velocity);
-    open_.max_cap_mm_s = std::max(open_.max_cap_mm_s, piece.limits.max_velocity);
-  }
-  open_.length_mm += piece.length_mm;
-  if (piece.limits.max_velocity > 0.0) open_.own_time_s += piece.length_mm / piece.limits.max_velocity;
+  open_.count(piece, open_.pieces.empty());
   open_.pieces.push_back(std::move(piece));
+}
+
+void MotionPlanner::Chain::count(const Piece& p, bool first) noexcept {
+  const double cap = p.limits.max_velocity;
+  min_cap_mm_s = first ? cap : std::min(min_cap_mm_s, cap);
+  max_cap_mm_s = first ? cap : std::max(max_cap_mm_s, cap);
+  length_mm = (first ? 0.0 : length_mm) + p.length_mm;
+  own_time_s = (first ? 0.0 : own_time_s) + (cap > 0.0 ? p.length_mm / cap : 0.0);
 }
 
 std::vector<CapStretch> MotionPlanner::stretches_of(const Chain& chain) {
@@ -424,14 +422,7 @@ void MotionPlanner::settle_last(double end_share, bool end_smooth) {
   // Its cap changed: it may no longer belong to the chain (add_piece decides anew).
   Piece moved = std::move(p);
   open_.pieces.pop_back();
-  open_.length_mm = open_.own_time_s = 0.0;
-  if (!open_.pieces.empty()) open_.min_cap_mm_s = open_.max_cap_mm_s = open_.pieces.front().limits.max_velocity;
-  for (const Piece& q : open_.pieces) {
-    open_.min_cap_mm_s = std::min(open_.min_cap_mm_s, q.limits.max_velocity);
-    open_.max_cap_mm_s = std::max(open_.max_cap_mm_s, q.limits.max_velocity);
-    open_.length_mm += q.length_mm;
-    if (q.limits.max_velocity > 0.0) open_.own_time_s += q.length_mm / q.limits.max_velocity;
-  }
+  for (std::size_t k = 0; k < open_.pieces.size(); ++k) open_.count(open_.pieces[k], k == 0);
   add_piece(std::move(moved));
 }
 

@@ -77,6 +77,9 @@ class MotionPlanner {
     double length_mm = 0.0;    // of its pieces
     double own_time_s = 0.0;   // each piece's length at its own cap, summed
     PathLimits limits;  // what the look-ahead planned it with (set when closed)
+    // Takes a piece's cap, length and time at its cap into the figures above (`first`: they
+    // start anew with it).
+    void count(const Piece& p, bool first) noexcept;
   };
   // Adds a piece to the open chain (closing it first if the piece's cap does not fit).
   void add_piece(Piece piece);
