@@ -12,8 +12,10 @@
 #include <algorithm>
 #include <cctype>
 #include <fstream>
+#include <initializer_list>
 #include <regex>
 #include <string>
+#include <string_view>
 
 namespace kontur::gcode {
 
@@ -107,6 +109,26 @@ std::optional<Dialect> named_control(const std::string& comments, std::string& w
   return std::nullopt;
 }
 
+// Whether `s` holds one of `pieces`. std::regex costs microseconds a line with these patterns (a
+// tenth of a whole run of dense G01): each pattern is tried only on a line holding a literal piece
+// that every match of it contains, which leaves the result as it was.
+bool holds_any(const std::string& s, std::initializer_list<std::string_view> pieces) {
+  for (std::string_view p : pieces)
+    if (s.find(p) != std::string::npos) return true;
+  return false;
+}
+
+// Whether `s` holds a G followed by leading zeros and one of `numbers` (what "G0*(80)" needs).
+bool holds_g(const std::string& s, std::initializer_list<std::string_view> numbers) {
+  for (std::size_t g = s.find('G'); g != std::string::npos; g = s.find('G', g + 1)) {
+    std::size_t d = g + 1;
+    while (d < s.size() && s[d] == '0') ++d;
+    for (std::string_view n : numbers)
+      if (s.compare(d, n.size(), n) == 0) return true;
+  }
+  return false;
+}
+
 std::string first_token(const std::string& code) {
   const auto b = code.find_first_not_of(" \t");
   if (b == std::string::npos) return {};
@@ -166,11 +188,15 @@ DialectChoice detect_dialect(std::string_view name, std::string_view text) {
     if (raw.size() > static_cast<std::size_t>(tolerances::gcode_max_line_length)) continue;
     split_line(raw, code, comments);
     std::smatch m;
+    // (the literal pieces each pattern's matches hold, in the order of its alternatives)
+    const bool may_linuxcnc = holds_any(code, {"O", "#<"});
     if (!marks[syntax_sinumerik_or_linuxcnc].found) {
-      if (std::regex_search(code, m, linuxcnc_re) || std::regex_search(comments, m, linuxcnc_comment_re))
+      if ((may_linuxcnc && std::regex_search(code, m, linuxcnc_re)) ||
+          (!comments.empty() && std::regex_search(comments, m, linuxcnc_comment_re)))
         note(syntax_sinumerik_or_linuxcnc, Dialect::linuxcnc,
              fmt::format("LinuxCNC's '{}' on line {}", std::string(m[0]).substr(0, 24), line));
-      else if (std::regex_search(code, m, sinumerik_re)) {
+      else if (holds_any(code, {"%", "D", "=", "O", "C", "E", "(", "R", "G64", "U", "IF", "L"}) &&
+               std::regex_search(code, m, sinumerik_re)) {
         std::string what = m[0];
         what.erase(0, what.find_first_not_of(" \t"));
         if (!what.empty() && !std::isalnum(static_cast<unsigned char>(what[0])) && what[0] != '%' && what[0] != '_')
@@ -178,30 +204,34 @@ DialectChoice detect_dialect(std::string_view name, std::string_view text) {
         note(syntax_sinumerik_or_linuxcnc, Dialect::sinumerik, fmt::format("Sinumerik's '{}' on line {}", what, line));
       }
     }
-    if (!marks[grbl_command].found && std::regex_search(code, m, grbl_re))
+    if (!marks[grbl_command].found && holds_any(code, {"$"}) && std::regex_search(code, m, grbl_re))
       note(grbl_command, Dialect::grbl, fmt::format("grbl command '{}' on line {}", first_token(code), line));
     if (!marks[fanuc_syntax].found) {
-      if (std::regex_search(code, m, program_number_re) &&
-          !std::regex_search(code, linuxcnc_re)) {
+      if (holds_any(code, {"O", ":"}) && std::regex_search(code, m, program_number_re) &&
+          !(may_linuxcnc && std::regex_search(code, linuxcnc_re))) {
         const std::string number = m[1];
         // "O1234" alone or with a comment: a program number; "O1234 G0" is not.
         const std::string rest = code.substr(static_cast<std::size_t>(m.position(0) + m.length(0)));
         if (rest.find_first_not_of(" \t") == std::string::npos)
           note(fanuc_syntax, Dialect::fanuc, fmt::format("program number {} on line {}", number, line));
-      } else if (std::regex_search(code, m, macro_re)) {
+      } else if (holds_any(code, {"IF", "WHILE", "END", "GOTO", "M98", "G65", "M97"}) &&
+                 std::regex_search(code, m, macro_re)) {
         std::string what = m[0];
         what.erase(0, what.find_first_not_of(" \t0123456789N"));
         note(fanuc_syntax, Dialect::fanuc, fmt::format("'{}' on line {}", what.substr(0, 24), line));
       }
     }
-    if (std::regex_search(code, g80_re)) after_g80 = true;
-    else if (std::regex_search(code, group01_re)) after_g80 = false;
-    else if (after_g80 && std::regex_search(code, axis_words_re)) {
-      note(fanuc_usage, Dialect::fanuc,
-           fmt::format("axis words without a motion code after G80 on line {} (a Fanuc keeps G0 / G1)", line));
-      after_g80 = false;
+    // (a motion code only matters after a G80: it ends the stretch looked at)
+    if (holds_g(code, {"80"}) && std::regex_search(code, g80_re)) after_g80 = true;
+    else if (after_g80) {
+      if (std::regex_search(code, group01_re)) after_g80 = false;
+      else if (std::regex_search(code, axis_words_re)) {
+        note(fanuc_usage, Dialect::fanuc,
+             fmt::format("axis words without a motion code after G80 on line {} (a Fanuc keeps G0 / G1)", line));
+        after_g80 = false;
+      }
     }
-    if (!marks[fanuc_usage].found && std::regex_search(code, m, mach3_code_re) &&
+    if (!marks[fanuc_usage].found && holds_g(code, {"50", "70", "71"}) && std::regex_search(code, m, mach3_code_re) &&
         !std::regex_search(code, cycle_or_lathe_words_re))
       note(fanuc_usage, Dialect::mach3,
            fmt::format("Mach3's {} on line {}", first_token(std::string(m[0]).substr(m[1].length())), line));
@@ -216,7 +246,7 @@ DialectChoice detect_dialect(std::string_view name, std::string_view text) {
       }
     }
     static const std::regex haas_code_re(R"((^|[^0-9.])(G187|M97\s*P))");  // accuracy control, local call
-    if (!fanuc_family_name && std::regex_search(code, m, haas_code_re)) {
+    if (!fanuc_family_name && holds_any(code, {"G187", "M97"}) && std::regex_search(code, m, haas_code_re)) {
       fanuc_family_name = Dialect::haas;
       fanuc_family_reason = fmt::format("Haas's {} on line {}", first_token(m[2]), line);
     }
