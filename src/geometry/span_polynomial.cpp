@@ -118,14 +118,14 @@ SpanPolynomialCurve::SpanPolynomialCurve(const NurbsCurve& curve) : degree_(curv
       for (int k = 0; k <= p; ++k) s.coeff[static_cast<std::size_t>(k)] += N[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)] * hp;
     }
     spans_.push_back(s);
+    starts_.push_back(a);
   }
 }
 
 std::size_t SpanPolynomialCurve::span_index(double u) const noexcept {
-  const auto it = std::upper_bound(spans_.begin(), spans_.end(), u,
-                                   [](double v, const SpanPolynomial& s) { return v < s.u_start; });
-  if (it == spans_.begin()) return 0;
-  return static_cast<std::size_t>(it - spans_.begin()) - 1;
+  const auto it = std::upper_bound(starts_.begin(), starts_.end(), u);
+  if (it == starts_.begin()) return 0;
+  return static_cast<std::size_t>(it - starts_.begin()) - 1;
 }
 
 Derivatives SpanPolynomialCurve::derivatives(double u, int order) const noexcept {

@@ -74,6 +74,7 @@ public:
 
 private:
   std::vector<SpanPolynomial> spans_;
+  std::vector<double> starts_;  // the spans' u_start, searched by span_index (a compact array)
   int degree_ = 0;
   bool rational_ = false;
 };
