@@ -280,6 +280,17 @@ inline constexpr double plan_stationary_blind_share = 0.1;
 /// this factor is refined by golden section between its neighbours (a large NURBS weight makes a
 /// peak narrower than the samples: issue 20, a jerk 3.1 times the limit).
 inline constexpr double plan_peak_refine_ratio = 1.1;
+/// The refinement (brent_minimum) stops once the peak's parameter is known to this share of the
+/// bracket between the neighbours, or after this many evaluations. A smooth peak costs 11-25
+/// evaluations (60 golden sections did before, to 3e-13 of the bracket: the peak's value is the
+/// same to rounding); a peak 1e-6 of the bracket wide is found to 1e-8 of its height.
+inline constexpr double plan_peak_refine_u = 1e-10;
+inline constexpr int plan_peak_refine_evaluations = 100;
+/// A sampled peak of |K| [1/mm] or |dK/ds| [1/mm^2] at most this is not refined: it is the rounding
+/// noise of a straight stretch (on the 173 shared programs such peaks lie at 1e-43 .. 1e-24, the
+/// next ones at 1e-17 and above), jagged from sample to sample, and refining it cost two fifths of
+/// a whole run of short_segments. (A radius of 1e20 mm limits no machine.)
+inline constexpr double plan_peak_refine_floor = 1e-20;
 /// A span whose speed cap is below plan_piece_cap_ratio times the cap of one of its four quarters
 /// (of its parameter range) is cut into them, and so on in each quarter (a tight turn in a span
 /// then slows only a short stretch around it, issue 20), at most this many times deep and into at

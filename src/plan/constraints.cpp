@@ -236,7 +236,8 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
     }
     // A narrow peak of |K| or |dK/ds| between samples (a large weight bends a small part of a
     // span): each sample that is a local maximum standing out of a neighbour by more than
-    // tolerances::plan_peak_refine_ratio is refined by golden section between its neighbours.
+    // tolerances::plan_peak_refine_ratio is refined by Brent's method between its neighbours
+    // (not the rounding noise of a straight stretch: tolerances::plan_peak_refine_floor).
     for (std::vector<double>* f : {&kappa, &rate}) {
       const std::vector<double>& v = *f;
       for (std::size_t k = 0; k < n; ++k) {
@@ -244,7 +245,7 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
         const double left = k > 0 ? v[k - 1] : -1.0, right = k + 1 < n ? v[k + 1] : -1.0;
         if (v[k] < left || v[k] < right) continue;
         const double low = std::min(left < 0.0 ? kInf : left, right < 0.0 ? kInf : right);
-        if (!(v[k] > tolerances::plan_peak_refine_ratio * low)) continue;
+        if (!(v[k] > tolerances::plan_peak_refine_ratio * low) || !(v[k] > tolerances::plan_peak_refine_floor)) continue;
         const bool of_rate = f == &rate;
         // (the maximum of the value: the minimum of its negative; -1 at a point that is not regular)
         const auto negative_value = [&](double u) {
@@ -253,8 +254,9 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
           const Local l = local(d);
           return -(of_rate ? l.rate.norm() : l.curvature.norm());
         };
-        const auto [u_peak, f_peak] =
-            golden_section_minimum(negative_value, us[k > 0 ? k - 1 : k], us[k + 1 < n ? k + 1 : k], 60);
+        const double ua = us[k > 0 ? k - 1 : k], ub = us[k + 1 < n ? k + 1 : k];
+        const auto [u_peak, f_peak] = brent_minimum(negative_value, ua, ub, tolerances::plan_peak_refine_u * (ub - ua),
+                                                    tolerances::plan_peak_refine_evaluations);
         if (f_peak <= 0.0) {
           const Local l = local(c.derivatives(u_peak, 3));
           add(l, hi, false);
