@@ -1,5 +1,9 @@
 // Seed 002 (methods.md section 1): basis polynomials, Table 2, and conversion invariants.
 #include <gtest/gtest.h>
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
 #include <kontur/geometry/nurbs.hpp>
 #include <kontur/geometry/span_polynomial.hpp>
 
@@ -64,6 +68,38 @@ TEST(SpanPolynomial, MatchesNurbsEvaluationOnRandomCurves) {
         EXPECT_LE((a[k] - b[k]).norm(), 1e-9 * mag) << testing::describe_case(seed, i) << " u=" << u << " k=" << k;
         scale /= range;
       }
+    }
+  }
+}
+
+// span_index tries the span it found last first (a hint): whatever the order of the calls, it
+// gives the search's answer (the last span starting at or before u; the first below u_min, the
+// last at and above u_max), on knots, between them, out of range and on a copy of the curve.
+TEST(SpanPolynomial, SpanIndexWithItsLastSpanHintEqualsTheSearchInAnyOrder) {
+  const auto seed = testing::test_seed();
+  std::mt19937_64 rng(seed);
+  for (std::uint64_t i = 0; i < 100; ++i) {
+    const SpanPolynomialCurve spans{NurbsCurve(testing::random_nurbs(seed, i))};
+    std::vector<double> starts;
+    for (const SpanPolynomial& s : spans.spans()) starts.push_back(s.u_start);
+    const auto expected = [&](double u) {
+      const auto it = std::upper_bound(starts.begin(), starts.end(), u);
+      return it == starts.begin() ? std::size_t{0} : static_cast<std::size_t>(it - starts.begin()) - 1;
+    };
+    std::vector<double> us = starts;
+    us.push_back(spans.u_max());
+    for (double b : starts) us.push_back(std::nextafter(b, -1e300));
+    us.push_back(spans.u_min() - 1.0);
+    us.push_back(spans.u_max() + 1.0);
+    const double range = spans.u_max() - spans.u_min();
+    for (int k = 0; k < 50; ++k)
+      us.push_back(spans.u_min() + range * std::uniform_real_distribution<double>(0, 1)(rng));
+    std::shuffle(us.begin(), us.end(), rng);
+    const SpanPolynomialCurve copy = spans;
+    for (double u : us) {
+      EXPECT_EQ(spans.span_index(u), expected(u)) << testing::describe_case(seed, i) << " u=" << u;
+      EXPECT_EQ(spans.span_index(u), expected(u)) << "again, u=" << u;  // the hint is this span now
+      EXPECT_EQ(copy.span_index(u), expected(u)) << "copy, u=" << u;
     }
   }
 }

@@ -123,9 +123,14 @@ SpanPolynomialCurve::SpanPolynomialCurve(const NurbsCurve& curve) : degree_(curv
 }
 
 std::size_t SpanPolynomialCurve::span_index(double u) const noexcept {
+  // (the same index as the search: the last span whose start is at most u, else the first)
+  const std::size_t last = last_.index.load(std::memory_order_relaxed);
+  if (last < starts_.size() && starts_[last] <= u && (last + 1 == starts_.size() || u < starts_[last + 1]))
+    return last;
   const auto it = std::upper_bound(starts_.begin(), starts_.end(), u);
-  if (it == starts_.begin()) return 0;
-  return static_cast<std::size_t>(it - starts_.begin()) - 1;
+  const std::size_t i = it == starts_.begin() ? 0 : static_cast<std::size_t>(it - starts_.begin()) - 1;
+  last_.index.store(i, std::memory_order_relaxed);
+  return i;
 }
 
 Derivatives SpanPolynomialCurve::derivatives(double u, int order) const noexcept {

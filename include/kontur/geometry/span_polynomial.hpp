@@ -8,6 +8,8 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <atomic>
+#include <cstddef>
 #include <vector>
 
 namespace kontur {
@@ -75,6 +77,17 @@ public:
 private:
   std::vector<SpanPolynomial> spans_;
   std::vector<double> starts_;  // the spans' u_start, searched by span_index (a compact array)
+  // The span span_index found last, tried first: a move of a smoothed run is evaluated many times
+  // within one span of a curve of thousands. Only a hint (relaxed, any thread may replace it).
+  struct LastSpan {
+    mutable std::atomic<std::size_t> index{0};
+    LastSpan() = default;
+    LastSpan(const LastSpan& o) noexcept : index(o.index.load(std::memory_order_relaxed)) {}
+    LastSpan& operator=(const LastSpan& o) noexcept {
+      index.store(o.index.load(std::memory_order_relaxed), std::memory_order_relaxed);
+      return *this;
+    }
+  } last_;
   int degree_ = 0;
   bool rational_ = false;
 };
