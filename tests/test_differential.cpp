@@ -1,11 +1,17 @@
 // Unit tangent, curvature and chord (bow-height) error.
 #include <gtest/gtest.h>
+#include <kontur/geometry/curve_piece.hpp>
 #include <kontur/geometry/differential.hpp>
 #include <kontur/geometry/helix_arc.hpp>
 #include <kontur/geometry/line_segment.hpp>
 #include <kontur/geometry/nurbs.hpp>
+#include <kontur/geometry/span_polynomial.hpp>
 
+#include <array>
 #include <cmath>
+#include <memory>
+#include <random>
+#include <vector>
 #include <limits>
 #include <numbers>
 
@@ -68,6 +74,40 @@ TEST(Differential, NonRegularPointGivesZeroNotNaN) {
   Derivatives d;  // C' = 0
   EXPECT_EQ(curvature(d), 0.0);
   EXPECT_EQ(unit_tangent(d), Vec3::Zero());
+}
+
+// stationary_points skips the refinement of a grid minimum of |C'|^2 that Markov's inequality
+// shows to be far from zero, on a polynomial curve only: every cusp off the grid is still found,
+// on the span polynomials of a cubic and on a piece of them (seeded cusp places t0).
+TEST(Differential, StationaryPointsFindsEveryCuspOfAPolynomialCurveOffTheGrid) {
+  std::mt19937 rng(20261203);
+  std::uniform_real_distribution<double> place(0.02, 0.98), scale(0.1, 100.0);
+  for (int trial = 0; trial < 300; ++trial) {
+    const double t0 = place(rng), sx = scale(rng), sy = scale(rng);
+    // x = sx (t - t0)^3, y = sy (t - t0)^2: |C'| = 0 at t0 only; Bezier points from the monomials
+    const std::array<double, 4> ax{-sx * t0 * t0 * t0, 3.0 * sx * t0 * t0, -3.0 * sx * t0, sx};
+    const std::array<double, 4> ay{sy * t0 * t0, -2.0 * sy * t0, sy, 0.0};
+    const auto bezier = [](const std::array<double, 4>& a) {
+      return std::array<double, 4>{a[0], a[0] + a[1] / 3.0, a[0] + 2.0 * a[1] / 3.0 + a[2] / 3.0,
+                                   a[0] + a[1] + a[2] + a[3]};
+    };
+    const auto bx = bezier(ax), by = bezier(ay);
+    NurbsData d;
+    d.degree = 3;
+    d.knots = {0, 0, 0, 0, 1, 1, 1, 1};
+    for (int i = 0; i < 4; ++i) d.points.emplace_back(bx[static_cast<std::size_t>(i)], by[static_cast<std::size_t>(i)], 0.0);
+    const auto spans = std::make_shared<SpanPolynomialCurve>(NurbsCurve(d));
+    ASSERT_EQ(spans->polynomial_degree(), 3);
+    const std::vector<double> at = stationary_points(*spans, 1e-6, 64);
+    ASSERT_EQ(at.size(), 1u) << "t0 = " << t0;
+    EXPECT_NEAR(at[0], t0, 1e-6) << "t0 = " << t0;
+    const CurvePiece piece(spans, 0.5 * t0, 0.5 * (1.0 + t0));
+    const std::vector<double> in_piece = stationary_points(piece, 1e-6, 64);
+    ASSERT_EQ(in_piece.size(), 1u) << "t0 = " << t0;
+    EXPECT_NEAR(in_piece[0], t0, 1e-6) << "t0 = " << t0;
+  }
+  // and a line has none, with nothing to refine
+  EXPECT_TRUE(stationary_points(LineSegment(Vec3(0, 0, 0), Vec3(1, 2, 3)), 1e-6, 64).empty());
 }
 
 }  // namespace

@@ -102,12 +102,24 @@ std::vector<double> stationary_points(const Curve& curve, double relative, int s
   const auto add = [&](double u) {
     if (out.empty() || u > out.back()) out.push_back(u);
   };
+  // Where |C'|^2 is a polynomial of degree d = 2 (p - 1) on each span (a curve of degree p, not
+  // rational) and d^2 < N = samples, Markov's inequality (|f'| <= 2 d^2 / (b - a) max f on a span
+  // [a, b]) bounds it between the grid points: max f <= M / (1 - d^2 / N) (M the span's largest
+  // sample), and within a grid step of sample k, f >= f_k - 2 d^2 / N max f. A grid minimum above
+  // limit by that much has no stationary point beside it and is not refined (on a smoothed run
+  // |C'|^2 is nearly constant and flat to rounding: its grid minima cost 60 evaluations each).
+  const int p = curve.polynomial_degree();
+  const double d2 = p >= 1 ? 4.0 * (p - 1) * (p - 1) : -1.0;
+  const double N = static_cast<double>(samples);
+  const double markov = d2 >= 0.0 && d2 < N ? (2.0 * d2 / N) / (1.0 - d2 / N) : -1.0;  // -1: no bound
   for (std::size_t s = 0; s + 1 < bp.size(); ++s) {
     const double* fs = &f[s * n];
     const double* ut = &us[s * n];
     if (fs[0] <= limit) add(ut[0]);
+    const double span_peak = *std::max_element(fs, fs + n);
     for (std::size_t k = 1; k + 1 < n; ++k) {
       if (!(fs[k] <= fs[k - 1] && fs[k] < fs[k + 1])) continue;
+      if (markov >= 0.0 && fs[k] - markov * span_peak > limit) continue;
       // the minimum of |C'|^2 in [u_{k-1}, u_{k+1}]
       const auto [u_min, f_min] =
           golden_section_minimum([&](double u) { return speed2(u, false); }, ut[k - 1], ut[k + 1], 100);

@@ -40,6 +40,10 @@ public:
   /// Parameter values where the curve may be less smooth (span boundaries), sorted, including
   /// u_min and u_max. Length and u(s) integrate piece by piece between them.
   [[nodiscard]] virtual std::vector<double> breakpoints() const = 0;
+  /// The degree of the curve's polynomial in u between each two breakpoints where it is one (not
+  /// rational), else -1 (unknown). Lets a search bound the curve between its samples (Markov's
+  /// inequality: stationary_points).
+  [[nodiscard]] virtual int polynomial_degree() const noexcept { return -1; }
 
   /// Point C(u) [mm].
   [[nodiscard]] Vec3 point(double u) const noexcept { return derivatives(u, 0)[0]; }

@@ -25,6 +25,8 @@ class CurvePiece final : public Curve {
   [[nodiscard]] Derivatives derivatives_left(double u, int order) const noexcept override;
   /// The whole curve's breakpoints inside (u0, u1), with u0 and u1.
   [[nodiscard]] std::vector<double> breakpoints() const override;
+  /// The whole curve's.
+  [[nodiscard]] int polynomial_degree() const noexcept override { return curve_->polynomial_degree(); }
 
   /// The whole curve.
   [[nodiscard]] const std::shared_ptr<const Curve>& whole() const noexcept { return curve_; }

@@ -12,6 +12,7 @@ public:
   [[nodiscard]] double u_max() const noexcept override { return 1.0; }
   [[nodiscard]] Derivatives derivatives(double u, int order) const noexcept override;
   [[nodiscard]] std::vector<double> breakpoints() const override { return {0.0, 1.0}; }
+  [[nodiscard]] int polynomial_degree() const noexcept override { return 1; }
   /// Start point [mm].
   [[nodiscard]] const Vec3& start() const noexcept { return start_; }
   /// End point [mm].

@@ -64,6 +64,8 @@ public:
   [[nodiscard]] Derivatives derivatives(double u, int order) const noexcept override;
   [[nodiscard]] Derivatives derivatives_left(double u, int order) const noexcept override;
   [[nodiscard]] std::vector<double> breakpoints() const override;
+  /// degree(), or -1 if rational.
+  [[nodiscard]] int polynomial_degree() const noexcept override { return rational_ ? -1 : degree_; }
 
   /// The spans, in parameter order.
   [[nodiscard]] const std::vector<SpanPolynomial>& spans() const noexcept { return spans_; }
