@@ -42,8 +42,10 @@ template <class F>
 /// and is less than half the step before last, else a golden section of the larger part. Stops
 /// once the bracket around the best point is within `x_tolerance` (plus rounding of x) on both
 /// sides, or after `max_evaluations` evaluations of f. (R. P. Brent, Algorithms for Minimization
-/// without Derivatives, 1973, ch. 5.) On a smooth minimum it converges superlinearly (about ten
-/// evaluations where golden sections take sixty); on any other it is never much slower than them.
+/// without Derivatives, 1973, ch. 5.) On a smooth minimum it converges superlinearly (11-36
+/// evaluations to 1e-10 .. 1e-12 of the bracket where 60 golden sections reach 3e-13; 22 against
+/// 62 on average in tests/test_golden_section.cpp); on a jagged function it falls back to golden
+/// sections and is no faster than they are.
 template <class F>
 [[nodiscard]] std::pair<double, double> brent_minimum(F&& f, double a, double b, double x_tolerance,
                                                       int max_evaluations) {
