@@ -116,7 +116,7 @@ std::vector<double> stationary_points(const Curve& curve, double relative, int s
     const double* fs = &f[s * n];
     const double* ut = &us[s * n];
     if (fs[0] <= limit) add(ut[0]);
-    const double span_peak = *std::max_element(fs, fs + n);
+    const double span_peak = markov >= 0.0 ? *std::max_element(fs, fs + n) : 0.0;  // (for the bound only)
     for (std::size_t k = 1; k + 1 < n; ++k) {
       if (!(fs[k] <= fs[k - 1] && fs[k] < fs[k + 1])) continue;
       if (markov >= 0.0 && fs[k] - markov * span_peak > limit) continue;
