@@ -74,6 +74,38 @@ TEST(Checker, CatchesADisturbedSetpointANaNAndAGap) {
   EXPECT_GT(check(short_end, c.moves, m).end_error_mm, 0.0);
 }
 
+// Regression guard: the lower level's replay of tolerance_parabolic_check2 (a full circle last)
+// overshot the circle's end by 6e-8 mm one period before the exact end; the projection took that
+// setpoint to the circle's start, the nearest point, and the chord to the end then spanned the
+// whole circle: "a chord is 1.02 mm off the path". A setpoint a hair past the end of a closed move
+// stays at its end.
+TEST(Checker, ASetpointAHairPastTheEndOfAFullCircleStaysAtItsEnd) {
+  const Machine m = default_machine();
+  Case c;
+  CircleFrame f;
+  f.centre = {4.572, 5.588, 0};
+  f.e1 = {1, 0, 0};
+  f.e2 = {0, -1, 0};
+  f.normal = {0, 0, -1};  // clockwise seen from +Z, as G2
+  const double r = 0.508;
+  c.curves = {std::make_shared<HelixArc>(f, r, 2.0 * std::numbers::pi, 0.0)};
+  c.moves.push_back(program::move_along(c.curves[0], 60.0, false, 1));
+  c.moves.back().id = 0;
+  c.samples = testing::plan_and_sample(m, c.moves);
+  ASSERT_GT(c.samples.size(), 10u);
+  const Report plain = check(c.samples, c.moves, m);
+  ASSERT_TRUE(plain.passed(m)) << ::testing::PrintToString(plain.failures(m));
+  // the setpoint before the last: 6e-8 mm past the end (on the circle, at the start's side)
+  auto past = c.samples;
+  const double eps = 6e-8 / r;  // [rad]
+  Sample& s = past[past.size() - 2];
+  s.position.x() = f.centre.x() + r * std::cos(eps);
+  s.position.y() = f.centre.y() - r * std::sin(eps);
+  const Report rp = check(past, c.moves, m);
+  EXPECT_LE(rp.max_chord_error_mm, m.chord_tolerance_mm) << ::testing::PrintToString(rp.failures(m));
+  EXPECT_LE(rp.max_path_error_mm, 1e-7);
+}
+
 // Regression guard: on a NURBS with uneven weights (the curve moves very unevenly in u, as in
 // LinuxCNC's G6_Curva_Delfino with R46 next to R1) a projection from 64 samples over the whole
 // range found a wrong local minimum and reported setpoints 1.39 mm off a path they were on.

@@ -177,8 +177,18 @@ double project(const Curve& c, const std::vector<double>& bp, SamplesOf&& sample
   for (double u : candidates)
     if (u >= u_hint && std::sqrt(dist2(u)) <= nearest + 1e-9 && !(u >= chosen)) chosen = u;
   if (chosen == chosen) return chosen;
-  // (none ahead: the local one if it is as near, else the nearest)
+  // (none ahead: the local one if it is as near; else the nearest point ahead where it is within
+  // the check's path tolerance, tolerances::check_resync_mm, of the nearest: a setpoint a hair past
+  // the end of a closed curve, nearest to its start, stays at the end, as the motion does; else
+  // the nearest)
   if (std::sqrt(dist2(u_local)) <= nearest + 1e-9) return u_local;
+  double ahead = std::numeric_limits<double>::quiet_NaN(), ahead_d2 = 0.0;
+  for (double u : candidates)
+    if (u >= u_hint && (!(ahead == ahead) || dist2(u) < ahead_d2)) {
+      ahead = u;
+      ahead_d2 = dist2(u);
+    }
+  if (ahead == ahead && std::sqrt(ahead_d2) <= nearest + tolerances::check_resync_mm) return ahead;
   return *std::min_element(candidates.begin(), candidates.end(),
                            [&](double a, double b) { return dist2(a) < dist2(b); });
 }
