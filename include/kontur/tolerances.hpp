@@ -234,6 +234,10 @@ inline constexpr double plan_corner_step_jerk_ramp = 0.5;
 /// Fractions of an axis's acceleration the centripetal part may take on a curve; the planner takes
 /// the one that gives the shortest time for the piece (the rest is left for the path acceleration).
 inline constexpr double plan_centripetal_shares[] = {0.5, 0.7, 0.9};
+/// A curved piece alone in its chain (an arc between corners) speeds up and brakes with the
+/// acceleration its centripetal part leaves at each speed: in bands up to these fractions of its cap
+/// (the last its cap), each with the acceleration left at its top (plan/banded_profile.hpp).
+inline constexpr double plan_acceleration_band_tops[] = {0.5, 0.7, 0.85, 0.95, 1.0};
 /// The time a piece is estimated at, to choose its shares: its length at its cap plus a weight of
 /// the time a change from rest to the cap takes, half of it for each end of the piece where its
 /// chain starts or ends (a stop, a corner, a curvature jump), this for each end inside a chain,

@@ -335,49 +335,72 @@ double speed_cap(const PathGeometry& g, double feed_mm_s, const Machine& machine
 
 namespace {
 
-// Path acceleration and jerk at speeds up to v (see path_limits).
-PathLimits limits_at_cap(const PathGeometry& g, double v, const Machine& machine, double junction_share) noexcept {
-  PathLimits l;
-  l.max_velocity = v;
-  l.max_acceleration = kInf;
-  l.max_jerk = kInf;
+// The path acceleration [mm/s^2] that keeps every axis within its limits at speeds up to v
+// (infinity where no axis bounds it): |t_i| a + |K_i| v^2 <= A_i at each of the stretch's pairs
+// (PathGeometry::pairs), the cross term 3 K_i v a <= plan_cross_jerk_share J_i, and (with
+// `extra_axes`) the extra axes (they move linearly with the distance: their acceleration is r_e
+// times the path's).
+double path_acceleration_at(const PathGeometry& g, double v, const Machine& machine, bool extra_axes = true) noexcept {
+  double acceleration = kInf;
   for (const AxisLimits& axis : machine.axes) {
     const int i = linear_axis_index(axis.name);
     if (i < 0 || !(g.tangent[i] > 0.0)) continue;
     const double k = g.curvature[i];
-    // |t_i| a + |K_i| v^2 <= A_i at each of the stretch's pairs (PathGeometry::pairs)
     double a = kInf;
     const PathGeometry::AxisPairs& p = g.pairs[static_cast<std::size_t>(i)];
     if (p.n == 0) a = (axis.max_acceleration - k * v * v) / g.tangent[i];
     for (std::size_t q = 0; q < static_cast<std::size_t>(p.n); ++q)
       if (p.t[q] > 0.0) a = std::min(a, (axis.max_acceleration - p.k[q] * v * v) / p.t[q]);
     if (k > 0.0 && v > 0.0) a = std::min(a, tolerances::plan_cross_jerk_share * axis.max_jerk / (3.0 * k * v));
-    l.max_acceleration = std::min(l.max_acceleration, a);
+    acceleration = std::min(acceleration, a);
   }
+  for (const AxisLimits& axis : machine.axes) {
+    const int e = extra_axis_index(axis.name);
+    if (e < 0 || !extra_axes) continue;
+    const double r = g.extra_rate[static_cast<std::size_t>(e)];
+    if (r > 0.0) acceleration = std::min(acceleration, axis.max_acceleration / r);
+  }
+  return acceleration;
+}
+
+// The path jerk [mm/s^3] left at speeds up to v when the cross term 3 K_i v a is at most
+// `cross[i]` [mm/s^3] (infinity where no axis bounds it): |t_i| j + cross_i + K'_i v^3 <=
+// (1 - junction share) J_i, and the extra axes' jerk r_e times the path's.
+double path_jerk_at(const PathGeometry& g, double v, const Vec3& cross, const Machine& machine,
+                    double junction_share) noexcept {
+  double jerk = kInf;
   for (const AxisLimits& axis : machine.axes) {
     const int i = linear_axis_index(axis.name);
     if (i < 0 || !(g.tangent[i] > 0.0)) continue;
-    const double j = (1.0 - junction_share) * axis.max_jerk - 3.0 * g.curvature[i] * v * l.max_acceleration -
-                     g.curvature_rate[i] * v * v * v;
-    l.max_jerk = std::min(l.max_jerk, j / g.tangent[i]);
+    const double j = (1.0 - junction_share) * axis.max_jerk - cross[i] - g.curvature_rate[i] * v * v * v;
+    jerk = std::min(jerk, j / g.tangent[i]);
   }
-  // The extra axes move linearly with the distance: their acceleration is r_e times the path's,
-  // their jerk r_e times the path's jerk.
   for (const AxisLimits& axis : machine.axes) {
     const int e = extra_axis_index(axis.name);
     if (e < 0) continue;
     const double r = g.extra_rate[static_cast<std::size_t>(e)];
-    if (!(r > 0.0)) continue;
-    l.max_acceleration = std::min(l.max_acceleration, axis.max_acceleration / r);
-    l.max_jerk = std::min(l.max_jerk, (1.0 - junction_share) * axis.max_jerk / r);
+    if (r > 0.0) jerk = std::min(jerk, (1.0 - junction_share) * axis.max_jerk / r);
   }
+  return jerk;
+}
+
+// Path acceleration and jerk at speeds up to v (see path_limits).
+PathLimits limits_at_cap(const PathGeometry& g, double v, const Machine& machine, double junction_share) noexcept {
+  PathLimits l;
+  l.max_velocity = v;
+  // (the cross term as the linear axes bound the acceleration; the extra axes may lower it further)
+  const double linear = path_acceleration_at(g, v, machine, false);
+  Vec3 cross;
+  for (int i = 0; i < 3; ++i) cross[i] = 3.0 * g.curvature[i] * v * linear;
+  l.max_jerk = path_jerk_at(g, v, cross, machine, junction_share);
+  l.max_acceleration = path_acceleration_at(g, v, machine);
   return l;
 }
 
 }  // namespace
 
 PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s, const Machine& machine,
-                       double junction_jerk_share, double change_weight) noexcept {
+                       double junction_jerk_share, double change_weight, bool alone) noexcept {
   PathLimits best;
   double best_time = kInf;
   const bool curved = !g.curvature.isZero();
@@ -392,10 +415,14 @@ PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s
       const double v = speed_cap(g, feed_mm_s, machine, share, rate_share);
       const PathLimits l = limits_at_cap(g, v, machine, junction_jerk_share);
       // Time estimate: the length at the cap, plus change_weight times the time to reach the cap
-      // from rest (jerk-limited).
-      const double change = std::isfinite(l.max_acceleration) && l.max_acceleration > 0.0
-                                ? velocity_change_time(0.0, v, l.max_acceleration, l.max_jerk)
-                                : 0.0;
+      // from rest (jerk-limited; by speed bands where the piece runs alone in its chain, as the
+      // motion planner then plans it: plan/banded_profile.hpp).
+      double change = std::isfinite(l.max_acceleration) && l.max_acceleration > 0.0
+                          ? velocity_change_time(0.0, v, l.max_acceleration, l.max_jerk)
+                          : 0.0;
+      if (alone && curved && change > 0.0)
+        if (const AccelerationBands b = acceleration_bands(g, l, machine, junction_jerk_share); b.n > 0)
+          change = std::min(change, banded_change_time(0.0, v, b));
       const double time = v > 0.0 ? length_mm / v + change_weight * change : kInf;
       if (time < best_time || best_time == kInf) {
         best_time = time;
@@ -417,6 +444,32 @@ PathLimits path_limits_at(const PathGeometry& g, double cap_mm_s, const Machine&
     l.max_acceleration = machine.axes.front().max_acceleration;
   if (!std::isfinite(l.max_jerk) || !(l.max_jerk > 0.0)) l.max_jerk = machine.axes.front().max_jerk;
   return l;
+}
+
+AccelerationBands acceleration_bands(const PathGeometry& g, const PathLimits& at_cap, const Machine& machine,
+                                     double junction_jerk_share) noexcept {
+  const double cap = at_cap.max_velocity;
+  if (g.curvature.isZero() || !(cap > 0.0) || !std::isfinite(cap)) return {};
+  if (!(path_acceleration_at(g, cap, machine) == at_cap.max_acceleration)) return {};  // a fallback
+  AccelerationBands b;
+  Vec3 cross = Vec3::Zero();  // the largest cross term 3 K_i v a over the bands [mm/s^3]
+  for (const double f : tolerances::plan_acceleration_band_tops) {
+    const bool last = !(f < 1.0);
+    const double top = last ? cap : f * cap;
+    double a = last ? at_cap.max_acceleration : path_acceleration_at(g, top, machine);
+    const double linear = path_acceleration_at(g, top, machine, false);
+    if (!(a > 0.0) || !std::isfinite(a) || !std::isfinite(linear)) return {};
+    if (b.n > 0) a = std::min(a, b.acceleration[static_cast<std::size_t>(b.n - 1)]);
+    for (int i = 0; i < 3; ++i) cross[i] = std::max(cross[i], 3.0 * g.curvature[i] * top * linear);
+    b.top_mm_s[static_cast<std::size_t>(b.n)] = top;
+    b.acceleration[static_cast<std::size_t>(b.n)] = a;
+    ++b.n;
+    if (last) break;
+  }
+  if (!(b.acceleration[0] > at_cap.max_acceleration * (1.0 + 1e-9))) return {};  // nothing to gain
+  b.max_jerk = std::min(at_cap.max_jerk, path_jerk_at(g, cap, cross, machine, junction_jerk_share));
+  if (!(b.max_jerk > 0.0) || !std::isfinite(b.max_jerk)) return {};
+  return b;
 }
 
 PathLimits move_limits(const MoveGeometry& move, const Machine& machine, int samples) {

@@ -388,7 +388,19 @@ std::vector<CapStretch> MotionPlanner::stretches_of(const Chain& chain) {
 }
 
 trajectory::PathProfile MotionPlanner::chain_profile(const Chain& chain, const ScurveProfile& planned) const {
-  if (chain.pieces.size() < 2 || !(chain.max_cap_mm_s > chain.min_cap_mm_s)) return trajectory::PathProfile(planned);
+  if (chain.pieces.size() == 1) {
+    // A curved piece alone: speeding up and braking harder where the centripetal part leaves more
+    // (plan/banded_profile.hpp), where that is faster than the look-ahead's S-curve.
+    const Piece& p = chain.pieces.front();
+    const AccelerationBands bands = acceleration_bands(p.geometry, p.limits, machine_, p.planned_share);
+    if (bands.n > 0)
+      if (const std::optional<trajectory::PathProfile> b =
+              plan_banded_profile(p.length_mm, planned.start_velocity(), planned.end_velocity(), bands);
+          b && b->duration() < planned.duration())
+        return *b;
+    return trajectory::PathProfile(planned);
+  }
+  if (!(chain.max_cap_mm_s > chain.min_cap_mm_s)) return trajectory::PathProfile(planned);
   // Steps of at most a servo period, a quarter of the time the jerk takes to build up the
   // acceleration, at least an eighth of a period.
   const double ramp_s = chain.limits.max_acceleration / chain.limits.max_jerk;
@@ -404,8 +416,9 @@ PathLimits MotionPlanner::piece_limits(const Piece& piece, double share, bool en
   const auto end_weight = [](bool smooth) {
     return smooth ? tolerances::plan_share_choice_change_weight : 0.5;
   };
+  // (a piece with a corner or a stop at both ends is alone in its chain: planned by speed bands)
   return path_limits(piece.geometry, piece.length_mm, piece.feed_mm_s, machine_, share,
-                     end_weight(piece.start_smooth) + end_weight(end_smooth));
+                     end_weight(piece.start_smooth) + end_weight(end_smooth), !piece.start_smooth && !end_smooth);
 }
 
 void MotionPlanner::settle_last(double end_share, bool end_smooth) {

@@ -14,6 +14,7 @@
 #include <kontur/axes.hpp>
 #include <kontur/geometry/curve.hpp>
 #include <kontur/machine.hpp>
+#include <kontur/plan/banded_profile.hpp>
 #include <kontur/plan/scurve.hpp>
 #include <kontur/tolerances.hpp>
 
@@ -142,10 +143,22 @@ struct PathGeometry {
 /// plan_path_jerk_share_min of the jerk), the pair with the shortest estimated time is taken: the
 /// length at the cap plus `change_weight` times the time a change from rest to the cap takes (1:
 /// a stretch planned alone; the motion planner weighs each end of a piece inside a chain less,
-/// tolerances::plan_share_choice_change_weight).
+/// tolerances::plan_share_choice_change_weight). `alone`: the stretch runs alone in its chain (both
+/// its ends are corners or stops), so the motion planner plans it with its acceleration_bands; the
+/// change is then estimated by them.
 [[nodiscard]] PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s,
                                      const Machine& machine, double junction_jerk_share,
-                                     double change_weight = 1.0) noexcept;
+                                     double change_weight = 1.0, bool alone = false) noexcept;
+
+/// The speed bands of a curved stretch whose limits at its cap are `at_cap` (from path_limits or
+/// path_limits_at with the same junction share): in the band up to top_k = f_k cap
+/// (tolerances::plan_acceleration_band_tops) the path acceleration that keeps every axis within its
+/// limits at speeds up to top_k (|t_i| a + |K_i| top_k^2 <= A_i at each pair, the cross term within
+/// its share), the last band at_cap's; the path jerk what is left with the largest cross term
+/// 3 K_i top_k a_k of the bands. Empty (n = 0) on a straight stretch or where the bands would not
+/// raise the acceleration.
+[[nodiscard]] AccelerationBands acceleration_bands(const PathGeometry& g, const PathLimits& at_cap,
+                                                   const Machine& machine, double junction_jerk_share) noexcept;
 
 /// The path limits of a stretch at a given speed cap [mm/s] (as path_limits, without choosing the
 /// centripetal share): raising the junction share lowers only the jerk.

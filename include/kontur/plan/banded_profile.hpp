@@ -1,0 +1,53 @@
+#pragma once
+// The speed profile of a curved piece that runs alone in its chain (an arc or a NURBS between two
+// corners), with an acceleration bound that depends on the speed.
+//
+// On a curve an axis's acceleration is t_i a + K_i v^2: the centripetal part K_i v^2 takes a share
+// of the axis's limit that grows with the speed, so the path acceleration a left over is largest at
+// low speed. The S-curve of the look-ahead uses one acceleration, the one left at the piece's speed
+// cap (with a centripetal share of 0.9 only 0.44 A on a circle); this profile uses, in each speed
+// band [top_{k-1}, top_k], the acceleration left at its top speed (AccelerationBands, computed by
+// constraints.hpp's acceleration_bands), so that it speeds up and brakes harder where it is slow.
+//
+// Method: a change of speed from va up to vb (from and to zero acceleration) is the time-optimal
+// one under the staircase bound a <= alpha_k while v is in band k and |j| <= J: the jerk +J until
+// the acceleration meets the bound, then along the bound, which is flat (jerk 0) at a band's
+// acceleration or a ramp down at -J that arrives at the next band's top with the next band's
+// acceleration (or at vb with zero). A braking is the time mirror of the change up from its end
+// speed. A profile is such a change up from v0 to a peak speed, a cruise and a braking to v1; the
+// peak is the largest (at most the cap) whose two changes fit in the length, by bisection.
+#include <kontur/plan/scurve.hpp>
+#include <kontur/trajectory/path_profile.hpp>
+
+#include <array>
+#include <optional>
+
+namespace kontur::plan {
+
+/// Path acceleration bounds by speed band: at speeds v <= top_mm_s[k] the path acceleration may be
+/// up to acceleration[k] (top speeds ascending, accelerations non-increasing, the last top the
+/// piece's speed cap with its S-curve's acceleration). The path jerk is `max_jerk` at every speed
+/// (at most the S-curve's: the cross term 3 K_i v a is largest in some band). n = 0: no bands (a
+/// line, or nothing to gain), the S-curve's constant limits hold.
+struct AccelerationBands {
+  static constexpr int kMax = 6;
+  std::array<double, kMax> top_mm_s{};      ///< [mm/s]
+  std::array<double, kMax> acceleration{};  ///< [mm/s^2]
+  int n = 0;
+  double max_jerk = 0.0;  ///< [mm/s^3]
+  /// The bound at speed v [mm/s] (the last band's above its top).
+  [[nodiscard]] double at(double v) const noexcept;
+};
+
+/// Duration [s] of the fastest change of speed from va up to vb [mm/s] (va <= vb <= the last top)
+/// under the bands, from and to zero acceleration.
+[[nodiscard]] double banded_change_time(double va, double vb, const AccelerationBands& bands);
+
+/// The profile over `distance` [mm] from v0 to v1 [mm/s] (both at most the last top; v1 reachable
+/// from v0 as the look-ahead planned it), zero acceleration at both ends, |a| <= bands.at(v),
+/// |j| <= bands.max_jerk, v <= the last top. None where the bands are empty or invalid or the
+/// speed change from v0 to v1 alone does not fit in the distance.
+[[nodiscard]] std::optional<trajectory::PathProfile> plan_banded_profile(double distance, double v0, double v1,
+                                                                         const AccelerationBands& bands);
+
+}  // namespace kontur::plan

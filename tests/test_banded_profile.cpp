@@ -1,0 +1,169 @@
+// The profile of a curved piece alone in its chain with an acceleration bound by speed band
+// (plan/banded_profile.hpp): every sample within the band's acceleration at its speed and the jerk
+// limit, continuous, ending exactly at the length and end speed; never slower than the S-curve at
+// the last band's acceleration; and the bands computed from a circle's geometry keep every axis
+// within its limits.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <kontur/plan/banded_profile.hpp>
+#include <kontur/plan/constraints.hpp>
+#include <random>
+
+namespace kontur::plan {
+namespace {
+
+using trajectory::PathProfile;
+
+// Random bands: ascending tops up to the cap, non-increasing accelerations.
+AccelerationBands random_bands(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  AccelerationBands b;
+  b.n = 1 + static_cast<int>(u(rng) * 5.0);
+  const double cap = 1.0 + 400.0 * u(rng);
+  double a = 50.0 + 3000.0 * u(rng);
+  double top = 0.0;
+  for (int k = 0; k < b.n; ++k) {
+    const auto kk = static_cast<std::size_t>(k);
+    top = k + 1 == b.n ? cap : top + (cap - top) * (0.1 + 0.8 * u(rng));
+    b.top_mm_s[kk] = top;
+    b.acceleration[kk] = a;
+    a *= 0.2 + 0.8 * u(rng);
+  }
+  b.max_jerk = 1e3 + 1e6 * u(rng);
+  return b;
+}
+
+// Samples the profile every dt: s and v continuous, v >= 0 and <= the cap, |a| within the band of
+// the speed (at the higher speed of the sample's neighbourhood), |j| <= J, the end exact.
+void expect_valid(const PathProfile& p, const AccelerationBands& b, double distance, double v1) {
+  const double cap = b.top_mm_s[static_cast<std::size_t>(b.n - 1)];
+  const int n = 20000;
+  const double dt = p.duration() / n;
+  auto prev = p.sample(0.0);
+  for (int k = 1; k <= n; ++k) {
+    const auto x = p.sample(k * dt);
+    ASSERT_GE(x.v, -1e-9 * cap) << k;
+    ASSERT_LE(x.v, cap * (1.0 + 1e-9)) << k;
+    ASSERT_LE(std::abs(x.a), b.at(x.v) * (1.0 + 1e-9) + 1e-9) << "at v " << x.v << ", step " << k;
+    ASSERT_LE(std::abs(x.j), b.max_jerk * (1.0 + 1e-9)) << k;
+    // continuity: the distance and speed move by what the speed and acceleration allow in dt
+    // (the trapezoid rule's error where the acceleration or jerk changes within the step)
+    const double a_top = b.acceleration[0];
+    ASSERT_NEAR(x.s - prev.s, 0.5 * (x.v + prev.v) * dt, a_top * dt * dt + b.max_jerk * dt * dt * dt + 1e-12 * distance)
+        << k;
+    ASSERT_NEAR(x.v - prev.v, 0.5 * (x.a + prev.a) * dt, b.max_jerk * dt * dt + 1e-12 * cap) << k;
+    prev = x;
+  }
+  EXPECT_EQ(p.sample(p.duration()).s, distance);
+  EXPECT_NEAR(p.sample(p.duration()).v, v1, 1e-9 * (1.0 + cap));
+}
+
+TEST(BandedProfile, KeepsEachBandsAccelerationTheJerkAndTheEndsOnSeededRandomProblems) {
+  std::mt19937_64 rng(20261203);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int planned = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const AccelerationBands b = random_bands(rng);
+    const double cap = b.top_mm_s[static_cast<std::size_t>(b.n - 1)];
+    const double last_a = b.acceleration[static_cast<std::size_t>(b.n - 1)];
+    const double distance = std::pow(10.0, -3.0 + 5.0 * u(rng));
+    const PathLimits l{cap, last_a, b.max_jerk};
+    // start and end speeds the look-ahead could plan with the last band's acceleration
+    const double v0 = u(rng) < 0.3 ? 0.0 : std::min(cap, reachable_velocity(0.0, distance, l)) * u(rng);
+    const double v1 = u(rng) < 0.3 ? 0.0 : reachable_velocity(v0, distance, l) * u(rng);
+    const ScurveProfile s = plan_scurve(distance, v0, v1, l);
+    const auto p = plan_banded_profile(distance, v0, s.end_velocity(), b);
+    ASSERT_TRUE(p) << trial;
+    ++planned;
+    SCOPED_TRACE(trial);
+    expect_valid(*p, b, distance, s.end_velocity());
+    // more acceleration at low speed never makes it slower than the S-curve at the last band's
+    EXPECT_LE(p->duration(), s.duration() * (1.0 + 1e-9)) << trial;
+  }
+  EXPECT_EQ(planned, 400);
+}
+
+TEST(BandedProfile, OneBandIsTheScurve) {
+  AccelerationBands b;
+  b.n = 1;
+  b.top_mm_s[0] = 80.0;
+  b.acceleration[0] = 600.0;
+  b.max_jerk = 20000.0;
+  const ScurveProfile s = plan_scurve(50.0, 0.0, 0.0, {80.0, 600.0, 20000.0});
+  const auto p = plan_banded_profile(50.0, 0.0, 0.0, b);
+  ASSERT_TRUE(p);
+  EXPECT_NEAR(p->duration(), s.duration(), 1e-12 * s.duration());
+  EXPECT_NEAR(banded_change_time(0.0, 80.0, b), velocity_change_time(0.0, 80.0, 600.0, 20000.0), 1e-12);
+}
+
+TEST(BandedProfile, RefusesWhatItCannotPlan) {
+  AccelerationBands b;
+  EXPECT_FALSE(plan_banded_profile(10.0, 0.0, 0.0, b));  // no bands
+  b.n = 2;
+  b.top_mm_s = {10.0, 20.0};
+  b.acceleration = {100.0, 200.0};  // rising: not a bound of a curve
+  b.max_jerk = 1000.0;
+  EXPECT_FALSE(plan_banded_profile(10.0, 0.0, 0.0, b));
+  b.acceleration = {200.0, 100.0};
+  EXPECT_FALSE(plan_banded_profile(10.0, 25.0, 0.0, b));      // faster than the cap
+  EXPECT_FALSE(plan_banded_profile(1e-6, 20.0, 0.0, b));      // the braking alone does not fit
+  EXPECT_TRUE(plan_banded_profile(10.0, 0.0, 0.0, b));
+}
+
+// A circle of radius R in XY on a machine of A per axis: the bands let the path accelerate at
+// about sqrt(A^2 - (v^2 / R)^2) below the cap; sampled along the circle, every axis's acceleration
+// t_i a + K_i v^2 (and the cross term of the jerk) stays within its limits.
+TEST(BandedProfile, ACirclesBandsKeepEveryAxisWithinItsAcceleration) {
+  Machine m;
+  m.max_feed_mm_s = 1000.0;
+  m.rapid_feed_mm_s = 1000.0;
+  m.chord_tolerance_mm = 0.001;
+  m.path_tolerance_mm = 0.01;
+  m.servo_period_s = 0.001;
+  for (const char name : {'X', 'Y', 'Z'}) {
+    AxisLimits a;
+    a.name = name;
+    a.max_velocity = 200.0;
+    a.max_acceleration = 762.0;
+    a.max_jerk = 76200.0;
+    m.axes.push_back(a);
+  }
+  const double r = 25.4;
+  PathGeometry g;
+  std::vector<std::array<double, 2>> px, py;
+  for (int k = 0; k <= 64; ++k) {
+    const double th = 2.0 * M_PI * k / 64.0;
+    px.push_back({std::abs(std::sin(th)), std::abs(std::cos(th)) / r});
+    py.push_back({std::abs(std::cos(th)), std::abs(std::sin(th)) / r});
+  }
+  g.tangent = Vec3(1.0, 1.0, 0.0);
+  g.curvature = Vec3(1.0 / r, 1.0 / r, 0.0);
+  g.curvature_rate = Vec3(1.0 / (r * r), 1.0 / (r * r), 0.0);
+  g.max_kappa = 1.0 / r;
+  g.set_pairs(0, px);
+  g.set_pairs(1, py);
+  const PathLimits l = path_limits(g, 120.0, 1000.0, m, 0.0, 1.0, true);
+  const AccelerationBands b = acceleration_bands(g, l, m, 0.0);
+  ASSERT_GT(b.n, 1);
+  EXPECT_EQ(b.top_mm_s[static_cast<std::size_t>(b.n - 1)], l.max_velocity);
+  EXPECT_EQ(b.acceleration[static_cast<std::size_t>(b.n - 1)], l.max_acceleration);
+  EXPECT_GT(b.acceleration[0], 1.5 * l.max_acceleration);
+  EXPECT_LE(b.max_jerk, l.max_jerk);
+  const auto p = plan_banded_profile(120.0, 0.0, 0.0, b);
+  ASSERT_TRUE(p);
+  EXPECT_LT(p->duration(), plan_scurve(120.0, 0.0, 0.0, l).duration());
+  for (int k = 0; k <= 4000; ++k) {
+    const auto x = p->sample(p->duration() * k / 4000.0);
+    const double th = x.s / r;
+    // the axes' acceleration on the circle: the tangential part along t, the centripetal along -n
+    const double ax = -std::sin(th) * x.a - std::cos(th) * x.v * x.v / r;
+    const double ay = std::cos(th) * x.a - std::sin(th) * x.v * x.v / r;
+    ASSERT_LE(std::abs(ax), 762.0 * (1.0 + 1e-9)) << k;
+    ASSERT_LE(std::abs(ay), 762.0 * (1.0 + 1e-9)) << k;
+  }
+}
+
+}  // namespace
+}  // namespace kontur::plan
