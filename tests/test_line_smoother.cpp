@@ -18,7 +18,9 @@
 #include <kontur/geometry/line_segment.hpp>
 #include <kontur/geometry/polyline_fit.hpp>
 #include <kontur/machine.hpp>
+#include <kontur/plan/constraints.hpp>
 #include <kontur/program/line_smoother.hpp>
+#include <kontur/tolerances.hpp>
 #include <kontur/program/program_path.hpp>
 #include <kontur/verify/checker.hpp>
 #include <limits>
@@ -202,6 +204,43 @@ TEST(LineSmoother, ARunBecomesPiecesOfOneCurveWithTheirLines) {
     EXPECT_NE(dynamic_cast<const CurvePiece*>(out[i].curve.get()), nullptr);
     EXPECT_GT(out[i].length_mm, 0.0);
   }
+}
+
+// Regression guard: a run longer than the window (smooth_max_run_lines) was cut into runs ending
+// and starting with a straight line, a corner of the programmed polyline between them:
+// circle_small_segments (9,997 lines of a 25 mm circle) slowed to 38 mm/s every 2,000 lines. The
+// runs now continue each other's curve: every line is a piece of a curve, contiguous, tangent and
+// curvature continuous at every junction (cuts included: the planner sees them smooth), and within
+// the tolerance of the programmed lines.
+TEST(LineSmoother, ALongRunIsCutCurvatureContinuously) {
+  const double tol = 0.01;
+  const std::vector<Vec3> v = rounded_arc(25.4, 2.95, 0.015, 0.00254);
+  ASSERT_GT(v.size(), 2 * tolerances::smooth_max_run_lines + 10);
+  const auto out = smooth(v, tol);
+  ASSERT_EQ(out.size(), v.size() - 1);
+  const Machine machine = default_machine();
+  int cuts = 0;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    EXPECT_EQ(out[i].source_line, static_cast<long>(i + 1));
+    if (i == 0 || i + 1 == out.size()) continue;
+    ASSERT_NE(dynamic_cast<const CurvePiece*>(out[i].curve.get()), nullptr) << i;
+    ASSERT_TRUE(out[i].lines.has_value()) << i;
+    const Curve &a = *out[i - 1].curve, &b = *out[i].curve;
+    const Derivatives da = a.derivatives_left(a.u_max(), 3), db = b.derivatives(b.u_min(), 3);
+    EXPECT_LE((da[0] - db[0]).norm(), 1e-12) << i;
+    if (i >= 2) {
+      EXPECT_TRUE(plan::junction(da, db, machine).smooth()) << "line " << i + 1;
+      const auto ca = static_cast<const CurvePiece*>(out[i - 1].curve.get());
+      const auto cb = static_cast<const CurvePiece*>(out[i].curve.get());
+      if (ca->whole() != cb->whole()) ++cuts;
+    }
+    // every piece within the tolerance of the programmed lines
+    for (int q = 0; q <= 4; ++q) {
+      const Vec3 p = b.point(b.u_min() + (b.u_max() - b.u_min()) * q / 4.0);
+      ASSERT_LE(distance_to_polyline(v, p), tol) << i;
+    }
+  }
+  EXPECT_EQ(cuts, static_cast<int>((v.size() - 3) / tolerances::smooth_max_run_lines));
 }
 
 TEST(LineSmoother, CornersExactStopsShortRunsAndRapidsStayAsProgrammed) {

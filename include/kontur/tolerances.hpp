@@ -353,6 +353,14 @@ inline constexpr double smooth_max_line_tolerances = 50.0;
 inline constexpr std::size_t smooth_min_lines = 6;
 /// Most lines held in one run: bounds the program stage's window (a longer run is cut there).
 inline constexpr std::size_t smooth_max_run_lines = 2000;
+/// A long run is fitted beyond its cut by lines of at least this many tolerances of arc length
+/// (20 smoothing lengths; they are fitted again by the next run, which continues the curve from
+/// the cut), so that at the cut the curve bends as the lines do: the zero curvature of a fit's end
+/// reaches about 7 smoothing lengths into it (64 lines of 15 um left a 25 mm circle's curvature at
+/// a tenth at the cut, and circle_small_segments still slowed to 40 mm/s there) ...
+inline constexpr double smooth_run_overlap_tolerances = 600.0;
+/// ... but by at most this many lines (the window's bound).
+inline constexpr std::size_t smooth_run_overlap_max_lines = 1000;
 /// Share of the tolerance the fitted curve is made to keep, measured on samples (the rest covers
 /// what lies between samples).
 inline constexpr double smooth_tolerance_share = 0.9;

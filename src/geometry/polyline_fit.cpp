@@ -56,7 +56,7 @@ struct Attempt {
 
 Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s, const std::vector<char>& knot_at,
                        bool few_knots, const Vec3& start_tangent, const Vec3& end_tangent, double tolerance_mm,
-                       int iterations) {
+                       int iterations, const PolylineFitOptions& options = {}) {
   Attempt result;
   const std::size_t n = v.size() - 1;  // lines
   const double total = s[n];
@@ -123,14 +123,15 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
   };
   std::vector<Vec3> ctrl(nc);
   for (std::size_t i = 0; i < nc; ++i) ctrl[i] = on_polyline((knots[i + 1] + knots[i + 2] + knots[i + 3]) / 3.0);
-  ctrl[0] = v[0];
-  ctrl[1] = v[0] + start_tangent * knots[4] / 3.0;
+  ctrl[0] = few_knots ? v[0] : options.start_point.value_or(v[0]);
+  ctrl[1] = ctrl[0] + start_tangent * knots[4] / 3.0;
   ctrl[nc - 1] = v[n];
   ctrl[nc - 2] = v[n] - end_tangent * (total - knots[nc - 1]) / 3.0;
   // the dense fit also fixes the curvature at the ends (zero: it joins the lines around it); with
   // few knots a span is long, and a straight first span would leave the lines
   if (!few_knots) {
-    ctrl[2] = ctrl[1] + start_tangent * knots[5] / 3.0;
+    // C''(0) = 6 / k4 ((P2 - P1) / k5 - (P1 - P0) / k4) with |C'(0)| = 1: the start curvature
+    ctrl[2] = ctrl[1] + knots[5] * (start_tangent / 3.0 + options.start_curvature * knots[4] / 6.0);
     ctrl[nc - 3] = ctrl[nc - 2] - end_tangent * (total - knots[nc - 2]) / 3.0;
   }
   const std::size_t first_free = few_knots ? 2 : 3, free = nc - 2 * first_free;  // control points first_free .. nc - 1 - first_free
@@ -331,7 +332,8 @@ std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& v, const Vec3& 
     if (!(s[i + 1] - s[i] > 1e-9 * total)) return std::nullopt;
   if (!options.few_knots) {
     const std::vector<char> every(n + 1, 1);
-    return fit_with_knots(v, s, every, false, start_tangent, end_tangent, tolerance_mm, tolerances::smooth_fit_iterations)
+    return fit_with_knots(v, s, every, false, start_tangent, end_tangent, tolerance_mm, tolerances::smooth_fit_iterations,
+                          options)
         .fit;
   }
 

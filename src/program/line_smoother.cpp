@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cstring>
 #include <kontur/geometry/curve_piece.hpp>
+#include <kontur/geometry/differential.hpp>
 #include <kontur/geometry/length.hpp>
 #include <kontur/geometry/line_segment.hpp>
 #include <kontur/geometry/polyline_fit.hpp>
@@ -23,15 +24,17 @@ double smoothing_tolerance(const Move& m) {
   return std::max(m.corner_tolerance_mm, m.naive_cam_tolerance_mm);
 }
 
+const LineSegment& line_of(const Move& m) { return static_cast<const LineSegment&>(*m.curve); }
+
 double line_length(const LineSegment& l) { return (l.end() - l.start()).norm(); }
 
 }  // namespace
 
-bool LineSmoother::continues(const Move& move) const {
+bool LineSmoother::joins(const Move& move) const {
   const LineSegment* next = feed_line(move);
-  if (next == nullptr || run_.size() >= tolerances::smooth_max_run_lines) return false;
+  if (next == nullptr) return false;
   const Move& last_move = run_.back();
-  const auto& last = static_cast<const LineSegment&>(*last_move.curve);
+  const auto& last = line_of(last_move);
   const double tol = smoothing_tolerance(last_move);
   if (!(tol > 0.0) || tol != smoothing_tolerance(run_.front())) return false;
   const double la = line_length(last), lb = line_length(*next);
@@ -48,47 +51,132 @@ void LineSmoother::push(const Move& move, std::vector<Move>& out) {
     out.push_back(move);
     return;
   }
-  if (!run_.empty() && !continues(move)) flush(out);
-  if (feed_line(move) != nullptr)
+  if (!run_.empty()) {
+    if (!joins(move))
+      flush(out);
+    else if (run_.size() >= tolerances::smooth_max_run_lines &&
+             (beyond_mm_ >= tolerances::smooth_run_overlap_tolerances * smoothing_tolerance(run_.front()) ||
+              run_.size() >= tolerances::smooth_max_run_lines + tolerances::smooth_run_overlap_max_lines))
+      cut(out);
+  }
+  if (const LineSegment* l = feed_line(move)) {
+    if (run_.size() >= tolerances::smooth_max_run_lines) beyond_mm_ += line_length(*l);
     run_.push_back(move);
-  else
+  } else {
     out.push_back(move);
+  }
+}
+
+std::optional<LineSmoother::Fitted> LineSmoother::fit_run() const {
+  const std::size_t n = run_.size();
+  if (n < tolerances::smooth_min_lines) return std::nullopt;
+  // A fresh run: the curve from the end of its first line (which stays a line) to the start of its
+  // last one. A continued run: from where the curve before ended, near the start of its first line.
+  auto vertices = std::make_shared<std::vector<Vec3>>();
+  vertices->reserve(n);
+  if (carry_) vertices->push_back(line_of(run_.front()).start());
+  for (std::size_t i = 1; i < n; ++i) vertices->push_back(line_of(run_[i]).start());
+  const auto& first = line_of(run_.front());
+  const auto& last = line_of(run_.back());
+  const Vec3 t1 = (last.end() - last.start()).normalized();
+  Vec3 t0 = (first.end() - first.start()).normalized();
+  PolylineFitOptions options;
+  if (carry_) {
+    t0 = carry_->tangent;
+    options.start_point = carry_->point;
+    options.start_curvature = carry_->curvature;
+  }
+  const double tol = smoothing_tolerance(run_.front());
+  std::optional<PolylineFit> fit = fit_polyline(*vertices, t0, t1, tol, options);
+  if (!fit) return std::nullopt;
+  Fitted f{std::make_shared<SpanPolynomialCurve>(fit->curve), std::move(fit->vertex_u), vertices, tol};
+  return f;
+}
+
+// Lines from..to (inclusive) of the run as pieces of the fitted curve.
+void LineSmoother::emit_pieces(const Fitted& f, std::size_t from, std::size_t to, std::vector<Move>& out) {
+  const auto breakpoints = std::make_shared<const std::vector<double>>(f.curve->breakpoints());
+  const std::size_t offset = carry_ ? 0 : 1;  // line i runs over vertex_u[i - offset] .. [i - offset + 1]
+  for (std::size_t i = from; i <= to; ++i) {
+    Move m = std::move(run_[i]);
+    const std::size_t k = i - offset;
+    m.curve = std::make_shared<CurvePiece>(f.curve, f.vertex_u[k], f.vertex_u[k + 1], breakpoints);
+    m.length_mm = length(*m.curve);
+    m.lines = ProgrammedLines{f.vertices, k, f.tolerance_mm};
+    out.push_back(std::move(m));
+  }
+}
+
+void LineSmoother::as_programmed(std::vector<Move>& out) {
+  std::size_t from = 0;
+  if (carry_ && !run_.empty()) {
+    // The curve before ended at carry_->point, within the tolerance of this first line's start:
+    // the line runs from there (within the tolerance of the programmed line all along, a corner
+    // for the blender) and the others as programmed.
+    Move m = std::move(run_.front());
+    const Vec3 start = line_of(m).start(), end = line_of(m).end();
+    m.curve = std::make_shared<LineSegment>(carry_->point, end);
+    m.length_mm = (end - carry_->point).norm();
+    auto programmed = std::make_shared<std::vector<Vec3>>(std::vector<Vec3>{start, end});
+    m.lines = ProgrammedLines{programmed, 0, carry_->tolerance_mm};
+    out.push_back(std::move(m));
+    from = 1;
+  }
+  for (std::size_t i = from; i < run_.size(); ++i) out.push_back(std::move(run_[i]));
+  run_.clear();
+  carry_.reset();
+  beyond_mm_ = 0.0;
 }
 
 void LineSmoother::flush(std::vector<Move>& out) {
+  const std::optional<Fitted> f = fit_run();
+  if (!f) {
+    as_programmed(out);
+    return;
+  }
+  emit_whole(*f, out);
+}
+
+void LineSmoother::emit_whole(const Fitted& f, std::vector<Move>& out) {
   const std::size_t n = run_.size();
-  if (n < tolerances::smooth_min_lines) {
-    for (Move& m : run_) out.push_back(std::move(m));
-    run_.clear();
-    return;
-  }
-  // The curve runs from the end of the first line to the start of the last one.
-  auto vertices = std::make_shared<std::vector<Vec3>>();
-  vertices->reserve(n - 1);
-  for (std::size_t i = 1; i < n; ++i) vertices->push_back(static_cast<const LineSegment&>(*run_[i].curve).start());
-  const auto& first = static_cast<const LineSegment&>(*run_.front().curve);
-  const auto& last = static_cast<const LineSegment&>(*run_.back().curve);
-  const Vec3 t0 = (first.end() - first.start()).normalized(), t1 = (last.end() - last.start()).normalized();
-  const double tol = smoothing_tolerance(run_.front());
-  const std::optional<PolylineFit> fit = fit_polyline(*vertices, t0, t1, tol);
-  if (!fit) {
-    for (Move& m : run_) out.push_back(std::move(m));
-    run_.clear();
-    return;
-  }
-  const std::shared_ptr<const Curve> curve = std::make_shared<SpanPolynomialCurve>(fit->curve);
-  const std::shared_ptr<const std::vector<Vec3>> shared = vertices;
-  const auto breakpoints = std::make_shared<const std::vector<double>>(curve->breakpoints());
-  out.push_back(std::move(run_.front()));
-  for (std::size_t i = 1; i + 1 < n; ++i) {
-    Move m = std::move(run_[i]);
-    m.curve = std::make_shared<CurvePiece>(curve, fit->vertex_u[i - 1], fit->vertex_u[i], breakpoints);
-    m.length_mm = length(*m.curve);
-    m.lines = ProgrammedLines{shared, i - 1, tol};
-    out.push_back(std::move(m));
-  }
-  out.push_back(std::move(run_.back()));
+  if (!carry_) out.push_back(std::move(run_.front()));  // a fresh run's first line stays a line
+  emit_pieces(f, carry_ ? 0 : 1, n - 2, out);
+  out.push_back(std::move(run_.back()));               // its last line stays a line
   run_.clear();
+  carry_.reset();
+  beyond_mm_ = 0.0;
+}
+
+void LineSmoother::cut(std::vector<Move>& out) {
+  // The run is fitted with the lines beyond the cut (the overlap), so that where it is cut the
+  // curve bends as the lines do; the lines up to the cut are handed on as its pieces, the rest
+  // start the next run, which continues the curve from the cut with its point, tangent and
+  // curvature (curvature-continuous: the chains carry the speed through).
+  const std::optional<Fitted> f = fit_run();
+  if (!f) {
+    as_programmed(out);
+    return;
+  }
+  const std::size_t last = tolerances::smooth_max_run_lines - 1;  // the last line handed on
+  const std::size_t k_end = last + 1 - (carry_ ? 0 : 1);  // its end: vertex_u[k_end]
+  const Derivatives d = f->curve->derivatives_left(f->vertex_u[k_end], 2);
+  const Vec3 point = d[0], programmed = line_of(run_[last]).end();
+  const double speed2 = d[1].squaredNorm();
+  // The next run's first line starts at the programmed vertex: the curve's point there must be
+  // within the tolerance's fitting share of it (so that, should the next fit fail, that line run
+  // from the curve's point stays within the tolerance), else this run ends as a whole here.
+  if (!(speed2 > 0.0) ||
+      !((point - programmed).norm() <= tolerances::smooth_tolerance_share * f->tolerance_mm)) {
+    emit_whole(*f, out);
+    return;
+  }
+  if (!carry_) out.push_back(std::move(run_.front()));
+  emit_pieces(*f, carry_ ? 0 : 1, last, out);
+  const Vec3 tangent = d[1] / std::sqrt(speed2);
+  const Vec3 curvature = (d[2] - d[2].dot(tangent) * tangent) / speed2;
+  run_.erase(run_.begin(), run_.begin() + static_cast<std::ptrdiff_t>(last + 1));
+  beyond_mm_ = 0.0;  // (fewer lines left than the window holds)
+  carry_ = Carry{point, tangent, curvature, f->tolerance_mm};
 }
 
 }  // namespace kontur::program

@@ -42,6 +42,13 @@ struct PolylineFitOptions {
   /// With few knots: give up (empty result) as soon as the fit would need more control points than
   /// this (0: no limit). A caller that writes the curve only if it is shorter than the lines says so.
   std::size_t max_control_points = 0;
+  /// The dense fit only: the curve starts here [mm] instead of at the first vertex (a point
+  /// within the tolerance of the first line: the end of the curve before, where a long run is
+  /// continued), with the curvature vector `start_curvature` [1/mm] (across the start tangent)
+  /// instead of zero, so that it continues that curve curvature-continuously. The deviation is
+  /// still measured from the programmed polyline.
+  std::optional<Vec3> start_point;
+  Vec3 start_curvature = Vec3::Zero();
 };
 
 /// The fit of `vertices` (at least 5: four lines or more, none shorter than 1e-9 of the whole)

@@ -7,9 +7,20 @@
 // the programmed lines: its first and last line stay lines (the corners around the run are the
 // blender's), each line between them becomes its piece of the curve (a move with the line's
 // source line, feed and tag, and the programmed lines it replaces, which the checker measures
-// every setpoint against). Runs are cut after 2,000 lines (a bounded window); a run the fit
-// cannot keep within the tolerance stays as programmed.
+// every setpoint against). A run the fit cannot keep within the tolerance stays as programmed.
+//
+// The window is bounded: a run is cut after tolerances::smooth_max_run_lines lines. It is fitted
+// with the lines after them up to tolerances::smooth_run_overlap_tolerances of arc length (at most
+// smooth_run_overlap_max_lines), so that where it is cut the curve bends as
+// the lines do; the next run continues the curve from there with its point, tangent and curvature
+// (polyline_fit's start conditions), so the cut is curvature-continuous, not a corner of the
+// programmed polyline. Where the curve's point at the cut is farther than the fit's share of the
+// tolerance from the programmed vertex, the run ends there as a whole instead; where the next fit
+// fails, its first line runs from the curve's point (within the tolerance of the programmed line).
+#include <kontur/geometry/span_polynomial.hpp>
 #include <kontur/program/move.hpp>
+#include <memory>
+#include <optional>
 #include <vector>
 
 namespace kontur::program {
@@ -24,9 +35,30 @@ class LineSmoother {
   void flush(std::vector<Move>& out);
 
  private:
-  [[nodiscard]] bool continues(const Move& move) const;
+  // The fitted curve of the run held back, with what its pieces need.
+  struct Fitted {
+    std::shared_ptr<const SpanPolynomialCurve> curve;
+    std::vector<double> vertex_u;                         // parameter of each vertex of the fit
+    std::shared_ptr<const std::vector<Vec3>> vertices;    // the programmed vertices it was fitted to
+    double tolerance_mm = 0.0;
+  };
+  // Where the curve of a cut run ended: the next run starts there.
+  struct Carry {
+    Vec3 point, tangent, curvature;  // [mm], unit, [1/mm]
+    double tolerance_mm = 0.0;
+  };
+  // The move is a feed line that continues the run (by its tolerance, length, place and turn).
+  [[nodiscard]] bool joins(const Move& move) const;
+  [[nodiscard]] std::optional<Fitted> fit_run() const;
+  void emit_pieces(const Fitted& f, std::size_t from, std::size_t to, std::vector<Move>& out);
+  void as_programmed(std::vector<Move>& out);
+  // The whole run as a curve between its (fresh run) first and its last line, which stay lines.
+  void emit_whole(const Fitted& f, std::vector<Move>& out);
+  void cut(std::vector<Move>& out);
   bool enabled_;
   std::vector<Move> run_;
+  std::optional<Carry> carry_;  // the run held back continues a cut run's curve
+  double beyond_mm_ = 0.0;      // length of the run's lines after its first smooth_max_run_lines [mm]
 };
 
 }  // namespace kontur::program
