@@ -123,18 +123,20 @@ void LineSmoother::as_programmed(std::vector<Move>& out) {
     from = 1;
   }
   for (std::size_t i = from; i < run_.size(); ++i) out.push_back(std::move(run_[i]));
+  end_run();
+}
+
+void LineSmoother::end_run() {
   run_.clear();
   carry_.reset();
   beyond_mm_ = 0.0;
 }
 
 void LineSmoother::flush(std::vector<Move>& out) {
-  const std::optional<Fitted> f = fit_run();
-  if (!f) {
+  if (const std::optional<Fitted> f = fit_run())
+    emit_whole(*f, out);
+  else
     as_programmed(out);
-    return;
-  }
-  emit_whole(*f, out);
 }
 
 void LineSmoother::emit_whole(const Fitted& f, std::vector<Move>& out) {
@@ -142,9 +144,7 @@ void LineSmoother::emit_whole(const Fitted& f, std::vector<Move>& out) {
   if (!carry_) out.push_back(std::move(run_.front()));  // a fresh run's first line stays a line
   emit_pieces(f, carry_ ? 0 : 1, n - 2, out);
   out.push_back(std::move(run_.back()));               // its last line stays a line
-  run_.clear();
-  carry_.reset();
-  beyond_mm_ = 0.0;
+  end_run();
 }
 
 void LineSmoother::cut(std::vector<Move>& out) {

@@ -54,6 +54,8 @@ class LineSmoother {
   void as_programmed(std::vector<Move>& out);
   // The whole run as a curve between its (fresh run) first and its last line, which stay lines.
   void emit_whole(const Fitted& f, std::vector<Move>& out);
+  // Forget the run held back (handed on).
+  void end_run();
   void cut(std::vector<Move>& out);
   bool enabled_;
   std::vector<Move> run_;
