@@ -739,7 +739,13 @@ class Program:
         if per_hole > 0.4 * self.left() or npeck > 60:
             self.feed = old_feed  # its F word is not written
             return
-        self.time += per_hole * holes
+        # (the estimate also counts each later peck's feed through the clearance a G83 / G73
+        # re-approach leaves above the previous depth, 0.010 in as in LinuxCNC: seed 41406's 14 um
+        # hole in 1 um pecks at 3.2 mm/min fed 14 x 0.255 mm per hole, 269 s against 19 s
+        # estimated; the choices above keep the estimate without it, so the programs of every
+        # seed stay as they were)
+        clearance_feed = (npeck - 1) * 0.254 if code in ("G83", "G73") else 0.0
+        self.time += (per_hole + self.move_time(clearance_feed, v)) * holes
         x, y = self.pos[0], self.pos[1]
         for k in range(holes):
             d = self.random_dir(2)
