@@ -131,7 +131,8 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
   // few knots a span is long, and a straight first span would leave the lines
   if (!few_knots) {
     // C''(0) = 6 / k4 ((P2 - P1) / k5 - (P1 - P0) / k4) with |C'(0)| = 1: the start curvature
-    ctrl[2] = ctrl[1] + knots[5] * (start_tangent / 3.0 + options.start_curvature * knots[4] / 6.0);
+    ctrl[2] = ctrl[1] + start_tangent * knots[5] / 3.0;
+    if (!options.start_curvature.isZero()) ctrl[2] += options.start_curvature * (knots[4] * knots[5] / 6.0);
     ctrl[nc - 3] = ctrl[nc - 2] - end_tangent * (total - knots[nc - 2]) / 3.0;
   }
   const std::size_t first_free = few_knots ? 2 : 3, free = nc - 2 * first_free;  // control points first_free .. nc - 1 - first_free
