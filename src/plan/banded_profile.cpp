@@ -10,6 +10,12 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// A state after a constant-jerk step of duration tau [s] from x.
+trajectory::PathState advance(const trajectory::PathState& x, double tau, double jerk) noexcept {
+  return {x.s + (x.v * tau + 0.5 * x.a * tau * tau + jerk * tau * tau * tau / 6.0),
+          x.v + (x.a * tau + 0.5 * jerk * tau * tau), x.a + jerk * tau, jerk};
+}
+
 // One constant-jerk step of a change of speed.
 struct Step {
   double tau_s = 0.0;  // [s]
@@ -90,14 +96,9 @@ Change change_up(double va, double vb, const AccelerationBands& b) {
     if (m == nt - 1) break;
   }
   // Its distance, integrated step by step from va.
-  double vv = va, aa = 0.0;
-  for (int k = 0; k < c.n; ++k) {
-    const Step& st = c.steps[static_cast<std::size_t>(k)];
-    const double tau = st.tau_s;
-    c.distance_mm += vv * tau + 0.5 * aa * tau * tau + st.jerk * tau * tau * tau / 6.0;
-    vv += aa * tau + 0.5 * st.jerk * tau * tau;
-    aa += st.jerk * tau;
-  }
+  trajectory::PathState x{0.0, va, 0.0, 0.0};
+  for (int k = 0; k < c.n; ++k) x = advance(x, c.steps[static_cast<std::size_t>(k)].tau_s, c.steps[static_cast<std::size_t>(k)].jerk);
+  c.distance_mm = x.s;
   return c;
 }
 
@@ -155,9 +156,7 @@ std::optional<trajectory::PathProfile> plan_banded_profile(double distance, doub
   double t = 0.0;
   auto run = [&](double tau, double jerk) {
     phases.push_back({t, {x.s, x.v, x.a, jerk}, jerk});
-    x.s += x.v * tau + 0.5 * x.a * tau * tau + jerk * tau * tau * tau / 6.0;
-    x.v += x.a * tau + 0.5 * jerk * tau * tau;
-    x.a += jerk * tau;
+    x = advance(x, tau, jerk);
     t += tau;
   };
   for (int k = 0; k < up.n; ++k) run(up.steps[static_cast<std::size_t>(k)].tau_s, up.steps[static_cast<std::size_t>(k)].jerk);

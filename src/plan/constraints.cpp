@@ -335,12 +335,10 @@ double speed_cap(const PathGeometry& g, double feed_mm_s, const Machine& machine
 
 namespace {
 
-// The path acceleration [mm/s^2] that keeps every axis within its limits at speeds up to v
-// (infinity where no axis bounds it): |t_i| a + |K_i| v^2 <= A_i at each of the stretch's pairs
-// (PathGeometry::pairs), the cross term 3 K_i v a <= plan_cross_jerk_share J_i, and (with
-// `extra_axes`) the extra axes (they move linearly with the distance: their acceleration is r_e
-// times the path's).
-double path_acceleration_at(const PathGeometry& g, double v, const Machine& machine, bool extra_axes = true) noexcept {
+// The path acceleration [mm/s^2] that keeps every linear axis within its limits at speeds up to
+// v (infinity where none bounds it): |t_i| a + |K_i| v^2 <= A_i at each of the stretch's pairs
+// (PathGeometry::pairs), and the cross term 3 K_i v a <= plan_cross_jerk_share J_i.
+double linear_path_acceleration_at(const PathGeometry& g, double v, const Machine& machine) noexcept {
   double acceleration = kInf;
   for (const AxisLimits& axis : machine.axes) {
     const int i = linear_axis_index(axis.name);
@@ -354,9 +352,16 @@ double path_acceleration_at(const PathGeometry& g, double v, const Machine& mach
     if (k > 0.0 && v > 0.0) a = std::min(a, tolerances::plan_cross_jerk_share * axis.max_jerk / (3.0 * k * v));
     acceleration = std::min(acceleration, a);
   }
+  return acceleration;
+}
+
+// The path acceleration [mm/s^2] the extra axes allow at any speed (they move linearly with the
+// distance: their acceleration is r_e times the path's; infinity where none moves).
+double extra_axes_path_acceleration(const PathGeometry& g, const Machine& machine) noexcept {
+  double acceleration = kInf;
   for (const AxisLimits& axis : machine.axes) {
     const int e = extra_axis_index(axis.name);
-    if (e < 0 || !extra_axes) continue;
+    if (e < 0) continue;
     const double r = g.extra_rate[static_cast<std::size_t>(e)];
     if (r > 0.0) acceleration = std::min(acceleration, axis.max_acceleration / r);
   }
@@ -389,11 +394,11 @@ PathLimits limits_at_cap(const PathGeometry& g, double v, const Machine& machine
   PathLimits l;
   l.max_velocity = v;
   // (the cross term as the linear axes bound the acceleration; the extra axes may lower it further)
-  const double linear = path_acceleration_at(g, v, machine, false);
+  const double linear = linear_path_acceleration_at(g, v, machine);
   Vec3 cross;
   for (int i = 0; i < 3; ++i) cross[i] = 3.0 * g.curvature[i] * v * linear;
   l.max_jerk = path_jerk_at(g, v, cross, machine, junction_share);
-  l.max_acceleration = path_acceleration_at(g, v, machine);
+  l.max_acceleration = std::min(linear, extra_axes_path_acceleration(g, machine));
   return l;
 }
 
@@ -450,14 +455,16 @@ AccelerationBands acceleration_bands(const PathGeometry& g, const PathLimits& at
                                      double junction_jerk_share) noexcept {
   const double cap = at_cap.max_velocity;
   if (g.curvature.isZero() || !(cap > 0.0) || !std::isfinite(cap)) return {};
-  if (!(path_acceleration_at(g, cap, machine) == at_cap.max_acceleration)) return {};  // a fallback
+  const double extra = extra_axes_path_acceleration(g, machine);
+  if (!(std::min(linear_path_acceleration_at(g, cap, machine), extra) == at_cap.max_acceleration))
+    return {};  // path_limits' fallback: no axis bounds it
   AccelerationBands b;
   Vec3 cross = Vec3::Zero();  // the largest cross term 3 K_i v a over the bands [mm/s^3]
   for (const double f : tolerances::plan_acceleration_band_tops) {
     const bool last = !(f < 1.0);
     const double top = last ? cap : f * cap;
-    double a = last ? at_cap.max_acceleration : path_acceleration_at(g, top, machine);
-    const double linear = path_acceleration_at(g, top, machine, false);
+    const double linear = linear_path_acceleration_at(g, top, machine);
+    double a = last ? at_cap.max_acceleration : std::min(linear, extra);
     if (!(a > 0.0) || !std::isfinite(a) || !std::isfinite(linear)) return {};
     if (b.n > 0) a = std::min(a, b.acceleration[static_cast<std::size_t>(b.n - 1)]);
     for (int i = 0; i < 3; ++i) cross[i] = std::max(cross[i], 3.0 * g.curvature[i] * top * linear);
