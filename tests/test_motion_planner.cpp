@@ -205,6 +205,43 @@ TEST(MotionPlanner, DwellHoldsThePositionForItsTime) {
 // Issue 12: pieces joined smoothly (here collinear lines) are one chain with one S-curve, so the
 // speed rises across their junctions instead of every short line starting and ending at zero
 // acceleration. 200 collinear lines of 0.05 mm take the time of one 10 mm line, within the limits.
+// A circle of four quarter arcs: chains of smooth pieces. At the feed the centripetal part takes
+// three quarters of the acceleration, so an S-curve at the cap's limits speeds up at about 0.66 A;
+// the chain's speed bands let it speed up and brake at nearly A while it is slow, as one arc alone
+// does (before they were given to chains of several pieces, at most 0.66 A).
+TEST(MotionPlanner, AChainOfArcsSpeedsUpHarderWhereItIsSlow) {
+  Machine m = default_machine();
+  for (AxisLimits& axis : m.axes) axis.max_jerk = 1e6;  // [mm/s^3] the cross term 3 K v a does not bind
+  const double R = 15.0, A = m.axes[0].max_acceleration;
+  const double F = std::sqrt(0.75 * A * R);  // [mm/s] centripetal 0.75 A at the feed
+  CircleFrame f;
+  f.centre = {0, 0, 0};
+  f.e1 = {1, 0, 0};
+  f.e2 = {0, 1, 0};
+  std::vector<Move> moves;
+  for (int k = 0; k < 4; ++k) {
+    moves.push_back(program::move_along(std::make_shared<HelixArc>(f, R, std::numbers::pi / 2), F, false, k + 1));
+    const Vec3 e1 = f.e1;
+    f.e1 = f.e2;
+    f.e2 = -e1;
+  }
+  const RunResult r = run(m, moves);
+  const Usage u = usage(r, m);
+  EXPECT_LE(u.v, 1.0 + 1e-6);
+  EXPECT_LE(u.a, 1.0 + 1e-6);
+  EXPECT_LE(u.j, 1.0 + 1e-6);
+  double v_max = 0.0;
+  for (const auto& p : r.points) v_max = std::max(v_max, p.v_mm_s);
+  EXPECT_LE(v_max, F * (1.0 + 1e-12));
+  // The path acceleration while slower than 0.6 of the top speed (speeding up and braking).
+  double a_slow = 0.0;
+  for (std::size_t k = 1; k < r.points.size(); ++k)
+    if (r.points[k].v_mm_s < 0.6 * v_max && r.points[k - 1].v_mm_s < 0.6 * v_max)
+      a_slow = std::max(a_slow, std::abs(r.points[k].v_mm_s - r.points[k - 1].v_mm_s) / m.servo_period_s);
+  EXPECT_GT(a_slow, 0.85 * A);
+  for (const auto& p : r.points) EXPECT_NEAR(p.position.norm(), R, 1e-9);
+}
+
 TEST(MotionPlanner, CollinearShortLinesRunAsFastAsOneLine) {
   const Machine m = default_machine();
   std::vector<Move> short_lines;

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <kontur/geometry/differential.hpp>
 #include <kontur/plan/chain_profile.hpp>
 #include <kontur/plan/motion_planner.hpp>
@@ -400,16 +401,59 @@ trajectory::PathProfile MotionPlanner::chain_profile(const Chain& chain, const S
         return *b;
     return trajectory::PathProfile(planned);
   }
-  if (!(chain.max_cap_mm_s > chain.min_cap_mm_s)) return trajectory::PathProfile(planned);
-  // Steps of at most a servo period, a quarter of the time the jerk takes to build up the
-  // acceleration, at least an eighth of a period.
-  const double ramp_s = chain.limits.max_acceleration / chain.limits.max_jerk;
-  const double step = std::clamp(0.25 * ramp_s, period_ / 8.0, period_);
-  const std::optional<trajectory::PathProfile> p = plan_chain_profile(
-      stretches_of(chain), planned.start_velocity(), planned.end_velocity(), chain.limits, step, planned.duration());
-  // The S-curve at the smallest cap always fits; the other one is taken only where it is faster.
-  if (p && p->duration() < planned.duration()) return *p;
-  return trajectory::PathProfile(planned);
+  // The S-curve at the smallest cap always fits; the others are taken only where they are faster.
+  std::optional<trajectory::PathProfile> best;
+  double best_s = planned.duration();
+  const auto consider = [&](std::optional<trajectory::PathProfile> p) {
+    if (p && p->duration() < best_s) {
+      best_s = p->duration();
+      best = std::move(p);
+    }
+  };
+  // Up to the smallest cap, speeding up and braking harder where every piece's centripetal part
+  // leaves more (the pieces' speed bands, each at its lowest over the chain's band).
+  if (const AccelerationBands bands = chain_bands(chain); bands.n > 0)
+    consider(plan_banded_profile(chain.length_mm, planned.start_velocity(), planned.end_velocity(), bands));
+  if (chain.max_cap_mm_s > chain.min_cap_mm_s) {
+    // Steps of at most a servo period, a quarter of the time the jerk takes to build up the
+    // acceleration, at least an eighth of a period.
+    const double ramp_s = chain.limits.max_acceleration / chain.limits.max_jerk;
+    const double step = std::clamp(0.25 * ramp_s, period_ / 8.0, period_);
+    consider(plan_chain_profile(stretches_of(chain), planned.start_velocity(), planned.end_velocity(), chain.limits,
+                                step, planned.duration()));
+  }
+  return best ? std::move(*best) : trajectory::PathProfile(planned);
+}
+
+AccelerationBands MotionPlanner::chain_bands(const Chain& chain) const {
+  // A chain band's top is a share of the chain's smallest cap, at most the same share of each
+  // piece's own cap: every speed of the band lies in that piece's band of the same index or a
+  // lower one, whose acceleration is at least as large (a piece without bands: its limits').
+  AccelerationBands b;
+  b.n = static_cast<int>(std::size(tolerances::plan_acceleration_band_tops));
+  b.max_jerk = chain.limits.max_jerk;
+  for (int k = 0; k < b.n; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    b.top_mm_s[i] = k + 1 < b.n ? tolerances::plan_acceleration_band_tops[i] * chain.min_cap_mm_s : chain.min_cap_mm_s;
+    b.acceleration[i] = std::numeric_limits<double>::infinity();
+  }
+  bool any = false;
+  for (const Piece& p : chain.pieces) {
+    const AccelerationBands own = acceleration_bands(p.geometry, p.limits, machine_, p.planned_share);
+    any = any || own.n > 0;
+    b.max_jerk = std::min(b.max_jerk, own.n > 0 ? own.max_jerk : p.limits.max_jerk);
+    for (int k = 0; k < b.n; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      const double own_k = own.n > 0 ? own.at(b.top_mm_s[i]) : p.limits.max_acceleration;
+      b.acceleration[i] = std::min(b.acceleration[i], own_k);
+    }
+  }
+  if (!any) return {};  // lines only: the chain's own limits
+  for (int k = 1; k < b.n; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    b.acceleration[i] = std::min(b.acceleration[i], b.acceleration[i - 1]);
+  }
+  return b;
 }
 
 PathLimits MotionPlanner::piece_limits(const Piece& piece, double share, bool end_smooth) const {

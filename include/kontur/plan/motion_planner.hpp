@@ -9,6 +9,7 @@
 #include <kontur/geometry/curve.hpp>
 #include <kontur/geometry/length.hpp>
 #include <kontur/machine.hpp>
+#include <kontur/plan/banded_profile.hpp>
 #include <kontur/plan/chain_profile.hpp>
 #include <kontur/plan/lookahead.hpp>
 #include <kontur/program/move.hpp>
@@ -87,6 +88,8 @@ class MotionPlanner {
   // pieces' caps differ, a profile that follows them where that is faster (plan/chain_profile.hpp).
   [[nodiscard]] trajectory::PathProfile chain_profile(const Chain& chain, const ScurveProfile& planned) const;
   [[nodiscard]] static std::vector<CapStretch> stretches_of(const Chain& chain);
+  // The chain's speed bands up to its smallest cap (none where its pieces are lines).
+  [[nodiscard]] AccelerationBands chain_bands(const Chain& chain) const;
   // The open chain's last piece gets its end junction's share; its limits become final.
   void settle_last(double end_share, bool end_smooth);
   // The limits of a piece whose ends have these junction shares and are or are not inside a chain.
