@@ -56,7 +56,7 @@ struct Attempt {
 
 Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s, const std::vector<char>& knot_at,
                        bool few_knots, const Vec3& start_tangent, const Vec3& end_tangent, double tolerance_mm,
-                       int iterations, const PolylineFitOptions& options = {}) {
+                       int iterations, const PolylineFitOptions& options = {}, bool free_end_curvature = false) {
   Attempt result;
   const std::size_t n = v.size() - 1;  // lines
   const double total = s[n];
@@ -129,13 +129,13 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
   ctrl[nc - 2] = v[n] - end_tangent * (total - knots[nc - 1]) / 3.0;
   // the dense fit also fixes the curvature at the ends (zero: it joins the lines around it); with
   // few knots a span is long, and a straight first span would leave the lines
-  if (!few_knots) {
+  if (!few_knots && !free_end_curvature) {
     // C''(0) = 6 / k4 ((P2 - P1) / k5 - (P1 - P0) / k4) with |C'(0)| = 1: the start curvature
     ctrl[2] = ctrl[1] + start_tangent * knots[5] / 3.0;
     if (!options.start_curvature.isZero()) ctrl[2] += options.start_curvature * (knots[4] * knots[5] / 6.0);
     ctrl[nc - 3] = ctrl[nc - 2] - end_tangent * (total - knots[nc - 2]) / 3.0;
   }
-  const std::size_t first_free = few_knots ? 2 : 3, free = nc - 2 * first_free;  // control points first_free .. nc - 1 - first_free
+  const std::size_t first_free = few_knots || free_end_curvature ? 2 : 3, free = nc - 2 * first_free;  // control points first_free .. nc - 1 - first_free
 
   // The terms that do not change between fits: the penalties (bending: 2-point Gauss, exact for
   // the linear second derivative; jerk: the third derivative is constant on a span) and the data
@@ -333,8 +333,17 @@ std::optional<PolylineFit> fit_polyline(const std::vector<Vec3>& v, const Vec3& 
     if (!(s[i + 1] - s[i] > 1e-9 * total)) return std::nullopt;
   if (!options.few_knots) {
     const std::vector<char> every(n + 1, 1);
-    return fit_with_knots(v, s, every, false, start_tangent, end_tangent, tolerance_mm, tolerances::smooth_fit_iterations,
-                          options)
+    std::optional<PolylineFit> fit = fit_with_knots(v, s, every, false, start_tangent, end_tangent, tolerance_mm,
+                                                    tolerances::smooth_fit_iterations, options)
+                                         .fit;
+    if (fit) return fit;
+    // A curve with zero curvature at its ends cannot follow lines that bend tightly right at them
+    // (a spiral of lines 25 tolerances long turning by 20 degrees each): then one whose curvature
+    // at the ends is free (a curvature jump for the planner there, instead of the whole run's
+    // corners). Not where the curve continues a cut run, whose start is fixed.
+    if (options.start_point) return std::nullopt;
+    return fit_with_knots(v, s, every, false, start_tangent, end_tangent, tolerance_mm,
+                          tolerances::smooth_fit_iterations, options, true)
         .fit;
   }
 

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cstring>
+#include <iterator>
 #include <kontur/geometry/curve_piece.hpp>
 #include <kontur/geometry/differential.hpp>
 #include <kontur/geometry/length.hpp>
@@ -136,7 +137,25 @@ void LineSmoother::flush(std::vector<Move>& out) {
   if (const std::optional<Fitted> f = fit_run())
     emit_whole(*f, out);
   else
+    split(out);
+}
+
+void LineSmoother::split(std::vector<Move>& out) {
+  // The fit of the whole run failed somewhere: the halves are fitted apart (a programmed corner
+  // between them, the last line of the first and the first of the second staying lines), and so on
+  // down to runs too short to smooth, so that one stretch the fit cannot keep within the tolerance
+  // leaves only itself as programmed.
+  const std::size_t n = run_.size();
+  if (n < 2 * tolerances::smooth_min_lines) {
     as_programmed(out);
+    return;
+  }
+  std::vector<Move> second(std::make_move_iterator(run_.begin() + static_cast<std::ptrdiff_t>(n / 2)),
+                           std::make_move_iterator(run_.end()));
+  run_.resize(n / 2);
+  flush(out);  // the first half (continuing a cut run's curve, if this run does)
+  run_ = std::move(second);
+  flush(out);  // the second half, a fresh run
 }
 
 void LineSmoother::emit_whole(const Fitted& f, std::vector<Move>& out) {
@@ -154,7 +173,7 @@ void LineSmoother::cut(std::vector<Move>& out) {
   // curvature (curvature-continuous: the chains carry the speed through).
   const std::optional<Fitted> f = fit_run();
   if (!f) {
-    as_programmed(out);
+    split(out);
     return;
   }
   const std::size_t last = tolerances::smooth_max_run_lines - 1;  // the last line handed on

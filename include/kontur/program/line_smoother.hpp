@@ -7,7 +7,9 @@
 // the programmed lines: its first and last line stay lines (the corners around the run are the
 // blender's), each line between them becomes its piece of the curve (a move with the line's
 // source line, feed and tag, and the programmed lines it replaces, which the checker measures
-// every setpoint against). A run the fit cannot keep within the tolerance stays as programmed.
+// every setpoint against). A run the fit cannot keep within the tolerance is halved, and each half
+// fitted apart (a programmed corner between them), down to runs too short to smooth, which stay as
+// programmed.
 //
 // The window is bounded: a run is cut after tolerances::smooth_max_run_lines lines. It is fitted
 // with the lines after them up to tolerances::smooth_run_overlap_tolerances of arc length (at most
@@ -52,6 +54,8 @@ class LineSmoother {
   [[nodiscard]] std::optional<Fitted> fit_run() const;
   void emit_pieces(const Fitted& f, std::size_t from, std::size_t to, std::vector<Move>& out);
   void as_programmed(std::vector<Move>& out);
+  // A run whose fit failed: its halves are fitted apart, recursively (as programmed once too short).
+  void split(std::vector<Move>& out);
   // The whole run as a curve between its (fresh run) first and its last line, which stay lines.
   void emit_whole(const Fitted& f, std::vector<Move>& out);
   // Forget the run held back (handed on).
