@@ -149,6 +149,8 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
   penalties.reserve(3 * m);
   std::vector<Term> data;
   data.reserve(4 * m + 1);
+  std::vector<char> data_at_vertex;
+  data_at_vertex.reserve(4 * m + 1);
   for (std::size_t j = 0; j < m; ++j) {
     const Span& sp = spans[j];
     const double h = sp.length;
@@ -170,6 +172,8 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
       Term d{pc.span, {}, on_polyline(pc.start + f * pc.length), pc.length / 4.0};
       for (std::size_t i = 0; i <= degree; ++i) d.b[i] = derivative(sp.basis[i], 0, pc.start - sp.start + f * pc.length);
       data.push_back(d);
+      // a vertex: the start of a line's first piece, or the last piece's end
+      data_at_vertex.push_back((q == 0 && pc.start == s[pc.line]) || q == 4 ? 1 : 0);
     }
   }
 
@@ -220,7 +224,12 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
   sample_start[m] = sample_basis.size();
   piece_sample[pieces.size()] = sample_basis.size();
 
-  std::vector<double> factor(m, 1.0);  // weight factor of each span's data points
+  // Weight factors of each span's data points: on the lines, and at the vertices. Where the curve
+  // strays from the lines the first rise; where it passes a vertex too far, only the second: more
+  // weight on the lines there would pull the curve further into the corner (lines 25 tolerances
+  // long turning by 20 degrees: a sagitta of 1.1 tolerances, the curve must pass between).
+  std::vector<double> factor(m, 1.0), vertex_factor(m, 1.0);
+  std::vector<double> vertex_deviation(m);
   const double target = tolerances::smooth_tolerance_share * tolerance_mm;
   std::vector<Vec3> points = ctrl;          // the fitted control points
   std::vector<double> deviation(m);
@@ -268,7 +277,10 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
     if (free > 0) {
       std::copy(penalty_values.begin(), penalty_values.end(), a.valuePtr());
       rhs = rhs_penalty;
-      for (const Term& d : data) add(d, d.weight * factor[d.first], rhs);
+      for (std::size_t q = 0; q < data.size(); ++q) {
+        const Term& d = data[q];
+        add(d, d.weight * (data_at_vertex[q] != 0 ? vertex_factor[d.first] : factor[d.first]), rhs);
+      }
       solver.factorize(a);
       if (solver.info() != Eigen::Success) return result;
       const Eigen::MatrixX3d x = solver.solve(rhs);
@@ -292,6 +304,7 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
                                           window[sample_basis[q].piece].second));
       deviation[j] = d;
     }
+    std::fill(vertex_deviation.begin(), vertex_deviation.end(), 0.0);
     for (std::size_t i = 1; i < n; ++i) {
       const std::size_t j = vertex_span[i];  // the span that starts at vertex i, or has it inside
       const std::size_t k = line_piece[i];   // the first piece of line i
@@ -299,22 +312,25 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
       // the samples of the two pieces before the vertex and the two after (dense: the spans)
       const std::size_t q0 = piece_sample[k >= 2 ? k - 2 : 0], q1 = piece_sample[std::min(pieces.size(), k + 2)];
       for (std::size_t q = q0; q + 1 < q1; ++q) d = std::min(d, segment_distance(v[i], samples[q], samples[q + 1]));
-      if (j > 0 && spans[j].start == s[i]) deviation[j - 1] = std::max(deviation[j - 1], d);
-      deviation[j] = std::max(deviation[j], d);
+      if (j > 0 && spans[j].start == s[i]) vertex_deviation[j - 1] = std::max(vertex_deviation[j - 1], d);
+      vertex_deviation[j] = std::max(vertex_deviation[j], d);
     }
-    const double worst = *std::max_element(deviation.begin(), deviation.end());
-    result.deviation = deviation;
+    for (std::size_t j = 0; j < m; ++j) result.deviation[j] = std::max(deviation[j], vertex_deviation[j]);
+    const double worst = *std::max_element(result.deviation.begin(), result.deviation.end());
     if (worst <= target) {
       result.fit = PolylineFit{NurbsCurve(NurbsData{degree, knots, points, {}}), s, worst, iteration};
       return result;
     }
-    // More weight where the curve strays, and on the spans beside it.
-    std::fill(raise.begin(), raise.end(), 0);
-    for (std::size_t j = 0; j < m; ++j)
-      if (deviation[j] > target)
-        for (std::size_t k = j > 0 ? j - 1 : 0; k <= std::min(m - 1, j + 1); ++k) raise[k] = 1;
-    for (std::size_t j = 0; j < m; ++j)
-      if (raise[j] != 0) factor[j] *= tolerances::smooth_fit_weight_step;
+    // More weight where the curve strays, and on the spans beside it: on the lines where it strays
+    // from them, on the vertices where it passes one too far.
+    for (auto [dev, weights] : {std::pair{&deviation, &factor}, std::pair{&vertex_deviation, &vertex_factor}}) {
+      std::fill(raise.begin(), raise.end(), 0);
+      for (std::size_t j = 0; j < m; ++j)
+        if ((*dev)[j] > target)
+          for (std::size_t k = j > 0 ? j - 1 : 0; k <= std::min(m - 1, j + 1); ++k) raise[k] = 1;
+      for (std::size_t j = 0; j < m; ++j)
+        if (raise[j] != 0) (*weights)[j] *= tolerances::smooth_fit_weight_step;
+    }
   }
   return result;
 }
