@@ -54,33 +54,32 @@ std::string summary_json(const std::string& program, const Machine& machine, con
   const std::size_t at = head_and_tail.find(marker);
   std::string text = head_and_tail.substr(0, at) + "[";
   const std::size_t n = std::min(r.blocks.size(), moves.size());
+  text.reserve(head_and_tail.size() + 480 * n);  // an entry is about 400-470 characters
+  // Each entry as dump(2) writes an object two levels down (every line indented by 4 more spaces),
+  // its values formatted by the same serializer, without building the object.
+  const auto field = [&text](const char* key, const nlohmann::ordered_json& value, bool last = false) {
+    text += "      \"";
+    text += key;
+    text += "\": ";
+    text += value.dump();
+    text += last ? "\n" : ",\n";
+  };
   for (std::size_t i = 0; i < n; ++i) {
     const verify::BlockStats& b = r.blocks[i];
-    nlohmann::ordered_json e;
-    e["line"] = b.source_line;
-    e["type"] = moves[i].type;
-    e["length_mm"] = moves[i].length_mm;
-    e["feed_mm_s"] = moves[i].feed_mm_s;
-    e["setpoints"] = b.samples;
-    if (b.samples > 0) {
-      e["t_start_s"] = b.t_first_s;
-      e["t_end_s"] = b.t_last_s;
-    } else {
-      e["t_start_s"] = nullptr;
-      e["t_end_s"] = nullptr;
-    }
-    e["max_velocity_ratio"] = b.max_velocity_ratio;
-    e["max_acceleration_ratio"] = b.max_acceleration_ratio;
-    e["max_jerk_ratio"] = b.max_jerk_ratio;
-    e["max_path_error_mm"] = b.max_path_error_mm;
-    e["max_chord_error_mm"] = b.max_chord_error_mm;
-    // As dump(2) writes an object two levels down: every line indented by 4 more spaces.
-    const std::string entry = e.dump(2);
-    text += i == 0 ? "\n    " : ",\n    ";
-    for (char c : entry) {
-      text += c;
-      if (c == '\n') text += "    ";
-    }
+    text += i == 0 ? "\n    {\n" : ",\n    {\n";
+    field("line", b.source_line);
+    field("type", moves[i].type);
+    field("length_mm", moves[i].length_mm);
+    field("feed_mm_s", moves[i].feed_mm_s);
+    field("setpoints", b.samples);
+    field("t_start_s", b.samples > 0 ? nlohmann::ordered_json(b.t_first_s) : nlohmann::ordered_json(nullptr));
+    field("t_end_s", b.samples > 0 ? nlohmann::ordered_json(b.t_last_s) : nlohmann::ordered_json(nullptr));
+    field("max_velocity_ratio", b.max_velocity_ratio);
+    field("max_acceleration_ratio", b.max_acceleration_ratio);
+    field("max_jerk_ratio", b.max_jerk_ratio);
+    field("max_path_error_mm", b.max_path_error_mm);
+    field("max_chord_error_mm", b.max_chord_error_mm, true);
+    text += "    }";
   }
   text += n > 0 ? "\n  ]" : "]";
   text.append(head_and_tail, at + marker.size());
