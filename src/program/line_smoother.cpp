@@ -133,8 +133,19 @@ void LineSmoother::end_run() {
   beyond_mm_ = 0.0;
 }
 
+bool LineSmoother::straight() const {
+  for (std::size_t i = 1; i < run_.size(); ++i) {
+    const auto &a = line_of(run_[i - 1]), &b = line_of(run_[i]);
+    const Vec3 ta = (a.end() - a.start()) / line_length(a), tb = (b.end() - b.start()) / line_length(b);
+    if ((tb - ta).cwiseAbs().maxCoeff() > tolerances::plan_junction_smooth) return false;
+  }
+  return true;
+}
+
 void LineSmoother::flush(std::vector<Move>& out) {
-  if (const std::optional<Fitted> f = fit_run())
+  if (straight())
+    as_programmed(out);  // every junction already smooth for the planner: nothing to gain
+  else if (const std::optional<Fitted> f = fit_run())
     emit_whole(*f, out);
   else
     split(out);
@@ -171,6 +182,10 @@ void LineSmoother::cut(std::vector<Move>& out) {
   // curve bends as the lines do; the lines up to the cut are handed on as its pieces, the rest
   // start the next run, which continues the curve from the cut with its point, tangent and
   // curvature (curvature-continuous: the chains carry the speed through).
+  if (straight()) {
+    as_programmed(out);
+    return;
+  }
   const std::optional<Fitted> f = fit_run();
   if (!f) {
     split(out);

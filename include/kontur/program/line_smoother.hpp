@@ -7,7 +7,8 @@
 // the programmed lines: its first and last line stay lines (the corners around the run are the
 // blender's), each line between them becomes its piece of the curve (a move with the line's
 // source line, feed and tag, and the programmed lines it replaces, which the checker measures
-// every setpoint against). A run the fit cannot keep within the tolerance is halved, and each half
+// every setpoint against). Collinear lines (every junction already smooth) stay lines. A run the
+// fit cannot keep within the tolerance is halved, and each half
 // fitted apart (a programmed corner between them), down to runs too short to smooth, which stay as
 // programmed.
 //
@@ -52,6 +53,8 @@ class LineSmoother {
   // The move is a feed line that continues the run (by its tolerance, length, place and turn).
   [[nodiscard]] bool joins(const Move& move) const;
   [[nodiscard]] std::optional<Fitted> fit_run() const;
+  // Every junction of the run is already smooth for the planner (collinear lines, to rounding).
+  [[nodiscard]] bool straight() const;
   void emit_pieces(const Fitted& f, std::size_t from, std::size_t to, std::vector<Move>& out);
   void as_programmed(std::vector<Move>& out);
   // A run whose fit failed: its halves are fitted apart, recursively (as programmed once too short).
