@@ -3,6 +3,7 @@
 #include <cmath>
 #include <iterator>
 #include <kontur/geometry/differential.hpp>
+#include <kontur/geometry/line_segment.hpp>
 #include <kontur/plan/chain_profile.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/tolerances.hpp>
@@ -111,8 +112,11 @@ std::vector<MovePiece> split_move(const Curve& c, const ArcLengthTable& table, d
   };
   std::vector<Cut> cuts;
   for (double u : bp) cuts.push_back({u, true, false});
-  for (double u : stationary_points(c, tolerances::plan_stationary_speed_relative,
-                                    tolerances::plan_stationary_search_samples)) {
+  // (a line's C' is constant: it has none)
+  const bool line = dynamic_cast<const LineSegment*>(&c) != nullptr;
+  for (double u : line ? std::vector<double>{}
+                       : stationary_points(c, tolerances::plan_stationary_speed_relative,
+                                           tolerances::plan_stationary_search_samples)) {
     const auto at = std::lower_bound(cuts.begin(), cuts.end(), u, [](const Cut& a, double b) { return a.u < b; });
     if (at != cuts.end() && at->u == u) at->stationary = true;
     else cuts.insert(at, {u, false, true});
