@@ -12,6 +12,13 @@ Vec3 unit_tangent(const Derivatives& d) noexcept {
   return n > 0.0 ? Vec3(d[1] / n) : Vec3::Zero();
 }
 
+Vec3 curvature_vector(const Derivatives& d) noexcept {
+  const Vec3 &r1 = d[1], &r2 = d[2];
+  const double q = r1.squaredNorm();
+  if (!(q > 0.0)) return Vec3::Zero();
+  return r2 / q - r1.dot(r2) * r1 / (q * q);
+}
+
 double curvature(const Derivatives& d) noexcept {
   const double v = d[1].norm();
   if (!(v > 0.0)) return 0.0;

@@ -4,6 +4,8 @@
 #include <limits>
 #include <vector>
 
+#include "bisection.hpp"
+
 namespace kontur::plan {
 
 namespace {
@@ -133,19 +135,11 @@ std::optional<trajectory::PathProfile> plan_banded_profile(double distance, doub
   const double cap = bands.top_mm_s[static_cast<std::size_t>(bands.n - 1)];
   if (v0 > cap || v1 > cap) return std::nullopt;
   auto needed = [&](double vp) { return change_up(v0, vp, bands).distance_mm + change_up(v1, vp, bands).distance_mm; };
-  auto fits = [&](double d) { return d <= distance * (1.0 + 1e-12) + 1e-15; };
   const double floor_v = std::max(v0, v1);
-  if (!fits(needed(floor_v))) return std::nullopt;
-  double vp = cap;
-  if (!fits(needed(cap))) {
-    double lo = floor_v, hi = cap;
-    for (int i = 0; i < 200; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      if (!(mid > lo && mid < hi)) break;
-      (fits(needed(mid)) ? lo : hi) = mid;
-    }
-    vp = lo;
-  }
+  if (!detail::fits(needed(floor_v), distance)) return std::nullopt;
+  const double vp = detail::fits(needed(cap), distance)
+                        ? cap
+                        : detail::bisect(floor_v, cap, [&](double v) { return detail::fits(needed(v), distance); }).lo;
   if (!(vp > 0.0)) return std::nullopt;
   const Change up = change_up(v0, vp, bands), down = change_up(v1, vp, bands);
   const double cruise = std::max(0.0, distance - up.distance_mm - down.distance_mm) / vp;

@@ -149,7 +149,7 @@ std::pair<Vec3, Vec3> curvature_vector_and_rate(const Derivatives& d) noexcept {
   const double q = r1.squaredNorm();
   if (!(q > 0.0)) return {Vec3::Zero(), Vec3::Zero()};
   const double p = r1.dot(r2);
-  const Vec3 k = r2 / q - p * r1 / (q * q);
+  const Vec3 k = curvature_vector(d);
   const Vec3 dk_du = r3 / q - 2.0 * p * r2 / (q * q) - ((r3.dot(r1) + r2.squaredNorm()) * r1 + p * r2) / (q * q) +
                      4.0 * p * p * r1 / (q * q * q);
   return {k, dk_du / std::sqrt(q)};
@@ -522,7 +522,7 @@ double corner_step_share(const AxisLimits& axis, double period_s) noexcept {
 double junction_limit(const Derivatives& end_in, const Derivatives& start_out, const Machine& machine,
                       double jerk_share) noexcept {
   const Vec3 dt = unit_tangent(start_out) - unit_tangent(end_in);
-  const Vec3 dk = curvature_vector_and_rate(start_out).first - curvature_vector_and_rate(end_in).first;
+  const Vec3 dk = curvature_vector(start_out) - curvature_vector(end_in);
   double v = kInf;
   const double T = machine.servo_period_s;
   for (const AxisLimits& axis : machine.axes) {
@@ -542,7 +542,7 @@ double junction_limit(const Derivatives& end_in, const Derivatives& start_out, c
 
 Junction junction(const Derivatives& end_in, const Derivatives& start_out, const Machine& machine) noexcept {
   const Vec3 dt = unit_tangent(start_out) - unit_tangent(end_in);
-  const Vec3 dk = curvature_vector_and_rate(start_out).first - curvature_vector_and_rate(end_in).first;
+  const Vec3 dk = curvature_vector(start_out) - curvature_vector(end_in);
   const double corner = dt.cwiseAbs().maxCoeff();
   if (corner <= tolerances::plan_junction_smooth && dk.cwiseAbs().maxCoeff() <= tolerances::plan_junction_smooth)
     return {kInf, 0.0};

@@ -393,18 +393,6 @@ std::vector<CapStretch> MotionPlanner::stretches_of(const Chain& chain) {
 }
 
 trajectory::PathProfile MotionPlanner::chain_profile(const Chain& chain, const ScurveProfile& planned) const {
-  if (chain.pieces.size() == 1) {
-    // A curved piece alone: speeding up and braking harder where the centripetal part leaves more
-    // (plan/banded_profile.hpp), where that is faster than the look-ahead's S-curve.
-    const Piece& p = chain.pieces.front();
-    const AccelerationBands bands = acceleration_bands(p.geometry, p.limits, machine_, p.planned_share);
-    if (bands.n > 0)
-      if (const std::optional<trajectory::PathProfile> b =
-              plan_banded_profile(p.length_mm, planned.start_velocity(), planned.end_velocity(), bands);
-          b && b->duration() < planned.duration())
-        return *b;
-    return trajectory::PathProfile(planned);
-  }
   // The S-curve at the smallest cap always fits; the others are taken only where they are faster.
   std::optional<trajectory::PathProfile> best;
   double best_s = planned.duration();
@@ -415,7 +403,8 @@ trajectory::PathProfile MotionPlanner::chain_profile(const Chain& chain, const S
     }
   };
   // Up to the smallest cap, speeding up and braking harder where every piece's centripetal part
-  // leaves more (the pieces' speed bands, each at its lowest over the chain's band).
+  // leaves more (the pieces' speed bands, each at its lowest over the chain's band; a curved piece
+  // alone in its chain: its own bands, plan/banded_profile.hpp).
   if (const AccelerationBands bands = chain_bands(chain); bands.n > 0)
     consider(plan_banded_profile(chain.length_mm, planned.start_velocity(), planned.end_velocity(), bands));
   if (chain.max_cap_mm_s > chain.min_cap_mm_s) {

@@ -142,13 +142,18 @@ bool LineSmoother::straight() const {
   return true;
 }
 
-void LineSmoother::flush(std::vector<Move>& out) {
-  if (straight())
+std::optional<LineSmoother::Fitted> LineSmoother::fit_or_hand_on(std::vector<Move>& out) {
+  if (straight()) {
     as_programmed(out);  // every junction already smooth for the planner: nothing to gain
-  else if (const std::optional<Fitted> f = fit_run())
-    emit_whole(*f, out);
-  else
-    split(out);
+    return std::nullopt;
+  }
+  std::optional<Fitted> f = fit_run();
+  if (!f) split(out);
+  return f;
+}
+
+void LineSmoother::flush(std::vector<Move>& out) {
+  if (const std::optional<Fitted> f = fit_or_hand_on(out)) emit_whole(*f, out);
 }
 
 void LineSmoother::split(std::vector<Move>& out) {
@@ -182,15 +187,8 @@ void LineSmoother::cut(std::vector<Move>& out) {
   // curve bends as the lines do; the lines up to the cut are handed on as its pieces, the rest
   // start the next run, which continues the curve from the cut with its point, tangent and
   // curvature (curvature-continuous: the chains carry the speed through).
-  if (straight()) {
-    as_programmed(out);
-    return;
-  }
-  const std::optional<Fitted> f = fit_run();
-  if (!f) {
-    split(out);
-    return;
-  }
+  const std::optional<Fitted> f = fit_or_hand_on(out);
+  if (!f) return;
   const std::size_t last = tolerances::smooth_max_run_lines - 1;  // the last line handed on
   const std::size_t k_end = last + 1 - (carry_ ? 0 : 1);  // its end: vertex_u[k_end]
   const Derivatives d = f->curve->derivatives_left(f->vertex_u[k_end], 2);

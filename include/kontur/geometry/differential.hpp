@@ -16,6 +16,9 @@ namespace kontur {
 /// The largest parametric speed |C'| [mm per parameter unit] on a grid of `samples` intervals of
 /// [u0, u1] (at u1, the limit from the left).
 [[nodiscard]] double peak_parametric_speed(const Curve& curve, double u0, double u1, int samples);
+/// Curvature vector K = dt/ds = C''/|C'|^2 - (C'.C'') C'/|C'|^4 [1/mm] (kappa times the principal
+/// normal); zero where the curve is not regular.
+[[nodiscard]] Vec3 curvature_vector(const Derivatives& d) noexcept;
 /// Curvature kappa = |C' x C''| / |C'|^3 [1/mm]; 0 where the curve is not regular.
 [[nodiscard]] double curvature(const Derivatives& d) noexcept;
 /// Chord (bow-height) error [mm] of a chord of length `step_mm` [mm] on a circle of radius

@@ -84,8 +84,9 @@ class MotionPlanner {
   };
   // Adds a piece to the open chain (closing it first if the piece's cap does not fit).
   void add_piece(Piece piece);
-  // The chain's profile: the look-ahead plans it as one S-curve at its smallest cap; where its
-  // pieces' caps differ, a profile that follows them where that is faster (plan/chain_profile.hpp).
+  // The chain's profile: the look-ahead plans it as one S-curve at its smallest cap; the fastest of
+  // that, the profile under the chain's speed bands (plan/banded_profile.hpp) and, where its
+  // pieces' caps differ, one that follows them (plan/chain_profile.hpp).
   [[nodiscard]] trajectory::PathProfile chain_profile(const Chain& chain, const ScurveProfile& planned) const;
   [[nodiscard]] static std::vector<CapStretch> stretches_of(const Chain& chain);
   // The chain's speed bands up to its smallest cap (none where its pieces are lines).

@@ -59,6 +59,9 @@ class LineSmoother {
   void as_programmed(std::vector<Move>& out);
   // A run whose fit failed: its halves are fitted apart, recursively (as programmed once too short).
   void split(std::vector<Move>& out);
+  // The run's fit; none where the run was handed on instead (straight: as programmed; the fit
+  // failed: split).
+  [[nodiscard]] std::optional<Fitted> fit_or_hand_on(std::vector<Move>& out);
   // The whole run as a curve between its (fresh run) first and its last line, which stay lines.
   void emit_whole(const Fitted& f, std::vector<Move>& out);
   // Forget the run held back (handed on).
