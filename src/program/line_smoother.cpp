@@ -204,8 +204,7 @@ void LineSmoother::cut(std::vector<Move>& out) {
   }
   if (!carry_) out.push_back(std::move(run_.front()));
   emit_pieces(*f, carry_ ? 0 : 1, last, out);
-  const Vec3 tangent = d[1] / std::sqrt(speed2);
-  const Vec3 curvature = (d[2] - d[2].dot(tangent) * tangent) / speed2;
+  const Vec3 tangent = unit_tangent(d), curvature = curvature_vector(d);
   run_.erase(run_.begin(), run_.begin() + static_cast<std::ptrdiff_t>(last + 1));
   beyond_mm_ = 0.0;  // (fewer lines left than the window holds)
   carry_ = Carry{point, tangent, curvature, f->tolerance_mm};
