@@ -2,7 +2,6 @@
 #include <cmath>
 #include <limits>
 
-#include "first_time_covering.hpp"
 #include <kontur/trajectory/path_profile.hpp>
 #include <kontur/tolerances.hpp>
 
@@ -54,6 +53,30 @@ PathProfile::PathProfile(std::vector<ProfilePhase> phases, double duration_s, co
 
 double PathProfile::start_velocity() const noexcept { return data_ ? data_->phases.front().start.v : 0.0; }
 
+namespace {
+
+// The state at time t [s] in phase p (t in [p.t0_s, duration)), as sample() gives it.
+PathState state_in_phase(const ProfilePhase& p, double t, double s0, double scale, double end_s) noexcept {
+  const double tau = t - p.t0_s, j = p.jerk;
+  PathState out;
+  out.j = j;
+  out.a = p.start.a + j * tau;
+  out.v = p.start.v + p.start.a * tau + 0.5 * j * tau * tau;
+  out.s = p.start.s + p.start.v * tau + 0.5 * p.start.a * tau * tau + j * tau * tau * tau / 6.0;
+  if (scale != 1.0) {
+    out.s = s0 + (out.s - s0) * scale;
+    out.v *= scale;
+    out.a *= scale;
+    out.j *= scale;
+  }
+  // Rounding must not move past the end.
+  out.s = std::min(out.s, end_s);
+  out.v = std::max(out.v, 0.0);
+  return out;
+}
+
+}  // namespace
+
 PathState PathProfile::sample(double t) const noexcept {
   if (!data_) return {};
   const Data& d = *data_;
@@ -62,25 +85,41 @@ PathState PathProfile::sample(double t) const noexcept {
   // The last phase starting at or before t.
   const auto it = std::upper_bound(d.phases.begin(), d.phases.end(), t,
                                    [](double x, const ProfilePhase& p) { return x < p.t0_s; });
-  const ProfilePhase& p = *(it == d.phases.begin() ? it : it - 1);
-  const double tau = t - p.t0_s, j = p.jerk;
-  PathState out;
-  out.j = j;
-  out.a = p.start.a + j * tau;
-  out.v = p.start.v + p.start.a * tau + 0.5 * j * tau * tau;
-  out.s = p.start.s + p.start.v * tau + 0.5 * p.start.a * tau * tau + j * tau * tau * tau / 6.0;
-  if (d.scale != 1.0) {
-    out.s = d.s0 + (out.s - d.s0) * d.scale;
-    out.v *= d.scale;
-    out.a *= d.scale;
-    out.j *= d.scale;
-  }
-  // Rounding must not move past the end.
-  out.s = std::min(out.s, d.end.s);
-  out.v = std::max(out.v, 0.0);
-  return out;
+  return state_in_phase(*(it == d.phases.begin() ? it : it - 1), t, d.s0, d.scale, d.end.s);
 }
 
-double PathProfile::time_at(double s_mm) const noexcept { return first_time_covering(*this, s_mm); }
+double PathProfile::time_at(double s_mm) const noexcept {
+  if (!data_) return 0.0;
+  const Data& d = *data_;
+  // The bisection of first_time_covering on sample(t).s >= s_mm, narrowed first to the phase in
+  // which s_mm is reached (its start does not cover s_mm, the next phase's start does): the same
+  // first time, with a search over the phases' starts and a bisection on one cubic.
+  const auto covers = [&](std::size_t k) {  // does the start of phase k (k >= 1) cover s_mm?
+    const double t = d.phases[k].t0_s;
+    if (t >= d.duration_s) return d.end.s >= s_mm;
+    return state_in_phase(d.phases[k], t, d.s0, d.scale, d.end.s).s >= s_mm;
+  };
+  std::size_t lo_k = 0, hi_k = d.phases.size();  // phase lo_k's start does not cover (or k = 0)
+  while (hi_k - lo_k > 1) {
+    const std::size_t mid = lo_k + (hi_k - lo_k) / 2;
+    if (covers(mid))
+      hi_k = mid;
+    else
+      lo_k = mid;
+  }
+  const ProfilePhase& p = d.phases[lo_k];
+  double lo = lo_k == 0 ? 0.0 : p.t0_s;
+  double hi = hi_k == d.phases.size() ? d.duration_s : std::min(d.phases[hi_k].t0_s, d.duration_s);
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi)) break;
+    const double s = mid >= d.duration_s ? d.end.s : state_in_phase(p, mid, d.s0, d.scale, d.end.s).s;
+    if (s < s_mm)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return hi;
+}
 
 }  // namespace kontur::trajectory
