@@ -78,8 +78,9 @@ class Pipeline {
   Pipeline& operator=(const Pipeline&) = delete;
 
   /// The axis layout of `program`'s setpoints, for a sink's header before run(): X Y Z, then the
-  /// machine's A B C U V W that the program moves (found by reading it once, only on a machine
-  /// with such axes). run() uses it (or calls it if not called for the same program).
+  /// machine's A B C U V W that the program moves. It reads the program once, validating it (an
+  /// error throws InputError here), and the next run() of the same program only reads it again
+  /// to hand its blocks on (run() calls it if not called for the same program).
   const AxisLayout& prepare(const std::string& program);
   /// Reads, plans and samples `program` (a file path; a program with an error yields no setpoint:
   /// InputError is thrown before the first one), handing every setpoint to events.setpoint.
@@ -113,7 +114,8 @@ class Pipeline {
   Machine machine_;
   PipelineOptions options_;
   AxisLayout layout_ = AxisLayout::xyz();
-  std::optional<std::string> prepared_for_;  // the program prepare() was called for
+  std::optional<gcode::ValidatedProgram> prepared_;  // the program prepare() validated, for run()
+  std::string prepared_stamp_;                       // its file's size and time then
   program::ProgramPath path_;
 };
 

@@ -27,23 +27,29 @@ ProgramSummary check_program(const std::string& path, const ReaderOptions& optio
   return s;
 }
 
-DialectChoice for_each_block(const std::string& path, const std::function<void(const Block&)>& on_block,
-                             const ReaderOptions& options) {
-  ReaderOptions again = options;
-  DialectChoice choice;
-  {
-    Reader validate(path, options);  // pass 1: the whole program, no block kept
-    Block b;
-    while (validate.next(b)) {  // every block, compensated: an error anywhere stops here
-    }
-    again.dialect = validate.dialect().dialect;
-    again.dialect_reason = validate.dialect().reason;
-    choice = validate.dialect();
-  }
-  Reader reader(path, again);  // pass 2: the same program, now known to be valid
+ValidatedProgram validate_program(const std::string& path, const ReaderOptions& options,
+                                  const std::function<void(const Block&)>& seen) {
+  Reader validate(path, options);  // the whole program, no block kept
+  Block b;
+  while (validate.next(b))  // every block, compensated: an error anywhere stops here
+    if (seen) seen(b);
+  ValidatedProgram v{path, options, validate.dialect()};
+  v.options.dialect = v.dialect.dialect;
+  v.options.dialect_reason = v.dialect.reason;
+  return v;
+}
+
+void for_each_validated_block(const ValidatedProgram& program, const std::function<void(const Block&)>& on_block) {
+  Reader reader(program.path, program.options);  // the same program, now known to be valid
   Block b;
   while (reader.next(b)) on_block(b);
-  return choice;
+}
+
+DialectChoice for_each_block(const std::string& path, const std::function<void(const Block&)>& on_block,
+                             const ReaderOptions& options) {
+  const ValidatedProgram v = validate_program(path, options);
+  for_each_validated_block(v, on_block);
+  return v.dialect;
 }
 
 }  // namespace kontur::gcode

@@ -76,32 +76,47 @@ gcode::ReaderOptions Pipeline::reader_options() const {
   return o;
 }
 
+namespace {
+
+// A file's size and modification time: whether it changed between two reads ("" when it cannot be
+// read; the reader then says why).
+std::string file_stamp(const std::string& path) {
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) return {};
+  const auto time = std::filesystem::last_write_time(path, ec);
+  if (ec) return {};
+  return std::to_string(size) + "/" + std::to_string(time.time_since_epoch().count());
+}
+
+}  // namespace
+
 const AxisLayout& Pipeline::prepare(const std::string& program) {
-  // X Y Z, then the machine's extra axes the program moves (a first reading pass, only on a
-  // machine that has extra axes): the setpoint files of X Y Z programs keep their X Y Z columns.
+  // X Y Z, then the machine's extra axes the program moves (seen in the reader's validating pass,
+  // which run() then does not repeat): the setpoint files of X Y Z programs keep their X Y Z columns.
   std::string letters = "XYZ";
   bool machine_extra = false;
   for (const AxisLimits& a : machine_.axes) machine_extra = machine_extra || extra_axis_index(a.name) >= 0;
-  if (machine_extra) {
-    std::array<bool, extra_axis_count> moved{};
-    gcode::for_each_block(
-        program,
-        [&](const gcode::Block& b) {
-          for (std::size_t e = 0; e < moved.size(); ++e) moved[e] = moved[e] || b.extra_start[e] != b.extra_end[e];
-        },
-        reader_options());
-    for (int e = 0; e < extra_axis_count; ++e)
-      if (moved[static_cast<std::size_t>(e)] && machine_.axis(extra_axis_letters[e]) != nullptr)
-        letters += extra_axis_letters[e];
-  }
+  std::array<bool, extra_axis_count> moved{};
+  std::function<void(const gcode::Block&)> seen;
+  if (machine_extra)
+    seen = [&](const gcode::Block& b) {
+      for (std::size_t e = 0; e < moved.size(); ++e) moved[e] = moved[e] || b.extra_start[e] != b.extra_end[e];
+    };
+  prepared_stamp_ = file_stamp(program);
+  prepared_ = gcode::validate_program(program, reader_options(), seen);
+  for (int e = 0; e < extra_axis_count; ++e)
+    if (moved[static_cast<std::size_t>(e)] && machine_.axis(extra_axis_letters[e]) != nullptr)
+      letters += extra_axis_letters[e];
   layout_ = AxisLayout::from_letters(letters);
-  prepared_for_ = program;
   return layout_;
 }
 
 RunResult Pipeline::run(const std::string& program, const PipelineEvents& events) {
-  if (!prepared_for_ || *prepared_for_ != program) prepare(program);
-  prepared_for_.reset();  // the next run reads its program again
+  // (a program file changed since prepare() is validated again)
+  if (!prepared_ || prepared_->path != program || prepared_stamp_ != file_stamp(program)) prepare(program);
+  const gcode::ValidatedProgram validated = std::move(*prepared_);
+  prepared_.reset();  // the next run reads (and validates) its program again
   trajectory::Trajectory trajectory;
   plan::MotionPlanner planner(machine_, trajectory);
   trajectory::Sampler sampler(trajectory, machine_.servo_period_s, layout_, options_.derivatives);
@@ -124,7 +139,7 @@ RunResult Pipeline::run(const std::string& program, const PipelineEvents& events
     drain();
     if (events.progress) events.progress(b.location.line);
   };
-  path_.read(program, handlers, reader_options());
+  path_.read(validated, handlers);
   planner.finish();
   drain();
   if (!checker) return result;

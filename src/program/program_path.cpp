@@ -22,6 +22,10 @@ void ProgramPath::take(std::vector<Move>& ready, const PathHandlers& handlers) {
 }
 
 void ProgramPath::read(const std::string& program, const PathHandlers& handlers, const gcode::ReaderOptions& reader) {
+  read(gcode::validate_program(program, reader), handlers);
+}
+
+void ProgramPath::read(const gcode::ValidatedProgram& program, const PathHandlers& handlers) {
   moves_.clear();
   smoother_ = LineSmoother(smooth_);
   blender_ = CornerBlender(blend_, &machine_, speed_);
@@ -31,7 +35,8 @@ void ProgramPath::read(const std::string& program, const PathHandlers& handlers,
     for (const Move& m : smoothed_) blender_.push(m, ready);
     smoothed_.clear();
   };
-  dialect_ = gcode::for_each_block(program, [&](const gcode::Block& b) {
+  dialect_ = program.dialect;
+  gcode::for_each_validated_block(program, [&](const gcode::Block& b) {
     Move move = move_of(b, machine_);
     if (!move.curve) {  // a dwell: the motion stops (no smoothing or blend across it) and stays
       smoother_.flush(smoothed_);
@@ -45,7 +50,7 @@ void ProgramPath::read(const std::string& program, const PathHandlers& handlers,
       take(ready, handlers);
     }
     if (handlers.block) handlers.block(b);
-  }, reader);
+  });
   smoother_.flush(smoothed_);
   blend();
   blender_.flush(ready);

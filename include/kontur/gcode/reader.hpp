@@ -106,8 +106,25 @@ ProgramSummary check_program(const std::string& path, const ReaderOptions& optio
 
 /// The later stages' entry: validates the whole program first (no block is handed out if it has an
 /// error: InputError is thrown), then reads it again and calls `on_block` for every block.
-/// Returns the dialect the program was read in.
+/// Returns the dialect the program was read in. The same as validate_program, then
+/// for_each_validated_block.
 DialectChoice for_each_block(const std::string& path, const std::function<void(const Block&)>& on_block,
                              const ReaderOptions& options = {});
+
+/// A program that the first pass found valid, and what the second pass reads it with.
+struct ValidatedProgram {
+  std::string path;
+  ReaderOptions options;  ///< with the dialect the first pass read it in
+  DialectChoice dialect;  ///< that dialect, and why
+};
+
+/// The first pass alone: reads the whole program, throwing InputError at the first error. `seen`
+/// (optional) sees every block of the valid part as it goes: to learn what the program does (which
+/// axes it moves) before any block is handed on, without a pass of its own.
+ValidatedProgram validate_program(const std::string& path, const ReaderOptions& options = {},
+                                  const std::function<void(const Block&)>& seen = {});
+
+/// The second pass alone: reads a validated program again and calls `on_block` for every block.
+void for_each_validated_block(const ValidatedProgram& program, const std::function<void(const Block&)>& on_block);
 
 }  // namespace kontur::gcode

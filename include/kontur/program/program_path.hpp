@@ -36,6 +36,8 @@ class ProgramPath {
   /// each read starts it anew).
   /// `reader`: block delete and the dialect (none: detected).
   void read(const std::string& program, const PathHandlers& handlers, const gcode::ReaderOptions& reader = {});
+  /// The same for a program already validated (gcode::validate_program): one reading pass.
+  void read(const gcode::ValidatedProgram& program, const PathHandlers& handlers);
 
   /// The dialect the last read program was read in, and why.
   [[nodiscard]] const gcode::DialectChoice& dialect() const noexcept { return dialect_; }
