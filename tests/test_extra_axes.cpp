@@ -357,5 +357,34 @@ TEST(ExtraAxes, SeededRandomFourAndFiveAxisProgramsRunAndPass) {
   }
 }
 
+// prepare() learns the columns in the reader's validating pass and run() does not validate again;
+// a program file changed in between must be validated again, not streamed unchecked.
+TEST(ExtraAxes, PrepareLearnsTheMovedAxesAndRunValidatesAProgramChangedSince) {
+  const auto path = (std::filesystem::temp_directory_path() / "kontur_prepare_then_edit.ngc").string();
+  std::ofstream(path) << "G21 G90 G17\nG1 X10 A30 F600\nG1 X20 Y5\nM2\n";
+  Pipeline pipeline(machine_with("AW"));
+  EXPECT_EQ(pipeline.prepare(path), AxisLayout::from_letters("XYZA"));  // W stays: the program does not move it
+  long setpoints = 0;
+  PipelineEvents events;
+  events.setpoint = [&](const Setpoint&) { ++setpoints; };
+  const RunResult first = pipeline.run(path, events);
+  EXPECT_TRUE(first.passed);
+  EXPECT_GT(setpoints, 0);
+  // Prepared, then edited (longer, with an error on line 8 after dwells that would hand out setpoints
+  // before it; the size differs, whatever the clock's resolution): run() validates it again and throws
+  // before handing out any setpoint.
+  (void)pipeline.prepare(path);
+  std::ofstream(path) << "G21 G90 G17\nG1 X10 A30 F600\nG4 P0.5\nG1 X20\nG4 P0.5\nG1 X30\nG4 P0.5\nG1 X40 Y5 Q\nM2\n";
+  setpoints = 0;
+  try {
+    (void)pipeline.run(path, events);
+    FAIL() << "an edited program with an error ran";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(":8:"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(setpoints, 0);
+  std::filesystem::remove(path);
+}
+
 }  // namespace
 }  // namespace kontur
