@@ -297,8 +297,21 @@ namespace {
 // u's rounding (half an ulp times |C'| = 5e-11 mm a step) added up to 46 nm over 5.4e6 steps and
 // the tool jumped where the line ended (jerk 2.2 times the limit at 1 ms, 6000 at 125 us).
 // Carrying each step's error into the next keeps the position on its arc length.
+// A line that does not say its speed is constant: its table is the quadrature's, as a curve's.
+class QuadratureLine final : public Curve {
+public:
+  QuadratureLine(const Vec3& a, const Vec3& b) : line_(a, b) {}
+  [[nodiscard]] double u_min() const noexcept override { return line_.u_min(); }
+  [[nodiscard]] double u_max() const noexcept override { return line_.u_max(); }
+  [[nodiscard]] Derivatives derivatives(double u, int order) const noexcept override { return line_.derivatives(u, order); }
+  [[nodiscard]] std::vector<double> breakpoints() const override { return line_.breakpoints(); }
+
+private:
+  LineSegment line_;
+};
+
 TEST(ArcLengthTable, StepsCarryTheirRoundingOverAMillionStepsOfALongLine) {
-  const LineSegment line(Vec3(0, 0, 0), Vec3(900000.0, 0, 0));
+  const QuadratureLine line(Vec3(0, 0, 0), Vec3(900000.0, 0, 0));
   const ArcLengthTable table(line);
   ASSERT_EQ(table.length_mm(), 900000.0);
   // A million steps of 0.09 mm, where u is near 1 (its ulp largest).
@@ -317,6 +330,31 @@ TEST(ArcLengthTable, StepsCarryTheirRoundingOverAMillionStepsOfALongLine) {
   EXPECT_LE(worst, 5e-10);
   // Without the carried error the same stepping drifts far more (how far depends on the rounding).
   EXPECT_GT(std::abs(line.point(u_plain).x() - s_plain), 10.0 * worst);
+}
+
+// A line's table is linear and exact: s(u) = |b - a| u, u(s) its inverse, with no quadrature and
+// no drift over a million steps of plain stepping (the carried error is not needed).
+TEST(ArcLengthTable, ALineIsExactWithoutQuadrature) {
+  const LineSegment line(Vec3(0, 0, 0), Vec3(900000.0, 0, 0));
+  const ArcLengthTable table(line);
+  EXPECT_EQ(table.length_mm(), 900000.0);
+  EXPECT_EQ(table.intervals(), 1u);
+  EXPECT_EQ(table.build_evaluations(), 0);
+  EXPECT_EQ(table.s_of_u(0.25), 225000.0);
+  EXPECT_EQ(table.u_of_s(450000.0), 0.5);
+  double u = table.u_of_s(800000.0), s = 800000.0, worst = 0.0;
+  for (int k = 0; k < 1000000; ++k) {
+    const double next = 800000.0 + 0.09 * (k + 1);
+    u = table.u_after(u, s, next, u);
+    s = next;
+    worst = std::max(worst, std::abs(line.point(u).x() - next));
+  }
+  EXPECT_LE(worst, 2.5e-10);  // ulp(890000) = 1.2e-10 mm: the rounding of u and of the point alone
+  // A tilted line the same: the point at s is s along its direction.
+  const LineSegment tilted(Vec3(1, 2, 3), Vec3(4, 6, 3));  // length 5 mm
+  const ArcLengthTable t2(tilted);
+  EXPECT_EQ(t2.length_mm(), 5.0);
+  EXPECT_LE((tilted.point(t2.u_of_s(2.0)) - Vec3(1 + 1.2, 2 + 1.6, 3)).norm(), 1e-15);
 }
 
 }  // namespace

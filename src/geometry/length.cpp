@@ -266,6 +266,13 @@ ArcLengthTable::ArcLengthTable(const Curve& curve, double rel_tol) : curve_(&cur
   rel_tol = std::max(rel_tol, tolerances::min_length_relative);
   u_.push_back(curve.u_min());
   s_.push_back(0.0);
+  if (const double v = curve.constant_speed(); v > 0.0 && std::isfinite(v)) {
+    speed_ = v;
+    u_.push_back(curve.u_max());
+    s_.push_back(v * (curve.u_max() - curve.u_min()));
+    level_.push_back(0);
+    return;
+  }
   for_each_piece(curve, curve.u_min(), curve.u_max(), [&](double a, double b) {
     integrate_piece(curve, a, b, rel_tol, build_evaluations_, [&](double, double hi, const GkResult& r) {
       u_.push_back(hi);
@@ -278,6 +285,7 @@ ArcLengthTable::ArcLengthTable(const Curve& curve, double rel_tol) : curve_(&cur
 
 double ArcLengthTable::s_of_u(double u) const noexcept {
   u = std::clamp(u, u_.front(), u_.back());
+  if (speed_ > 0.0) return u == u_.back() ? s_.back() : speed_ * (u - u_.front());
   const auto it = std::upper_bound(u_.begin(), u_.end(), u);
   const std::size_t k = (it == u_.begin()) ? 0 : std::min<std::size_t>(static_cast<std::size_t>(it - u_.begin()) - 1, u_.size() - 2);
   if (u == u_[k]) return s_[k];
@@ -290,6 +298,7 @@ double ArcLengthTable::u_of_s(double s, double u_hint) const noexcept {
   const double total = s_.back();
   if (!(s > 0.0)) return u_.front();
   if (s >= total) return u_.back();
+  if (speed_ > 0.0) return std::min(u_.front() + s / speed_, u_.back());
   const auto it = std::upper_bound(s_.begin(), s_.end(), s);
   const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(it - s_.begin()) - 1, u_.size() - 2);
   const double ua = u_[k], ub = u_[k + 1], sa = s_[k], sb = s_[k + 1];
@@ -329,6 +338,7 @@ double ArcLengthTable::u_after(double u_from, double s_from, double s_to, double
   if (s_to_error != nullptr) *s_to_error = 0.0;
   const double total = s_.back();
   if (s_to >= total) return u_.back();
+  if (speed_ > 0.0) return u_of_s(s_to);  // exact (the rounding of u alone)
   const auto it = std::upper_bound(s_.begin(), s_.end(), s_to);
   const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(it - s_.begin()) - 1, u_.size() - 2);
   const double ua = u_[k], ub = u_[k + 1];

@@ -44,6 +44,9 @@ public:
   /// rational), else -1 (unknown). Lets a search bound the curve between its samples (Markov's
   /// inequality: stationary_points).
   [[nodiscard]] virtual int polynomial_degree() const noexcept { return -1; }
+  /// |C'(u)| [mm per parameter unit] where it is the same all along the curve and known exactly (a
+  /// line: its length), else 0. Lets the arc-length table be exact and linear.
+  [[nodiscard]] virtual double constant_speed() const noexcept { return 0.0; }
 
   /// Point C(u) [mm].
   [[nodiscard]] Vec3 point(double u) const noexcept { return derivatives(u, 0)[0]; }

@@ -52,7 +52,8 @@ enum class SimpsonScheme {
 [[nodiscard]] double length(const Curve& curve);
 
 /// Arc length s(u) and its inverse u(s), from a table of the adaptive quadrature's nodes built
-/// once; a query is a binary search and a few safeguarded Newton steps on one table interval.
+/// once; a query is a binary search and a few safeguarded Newton steps on one table interval. On a
+/// curve of constant speed (Curve::constant_speed: a line) s(u) is linear and both are exact.
 /// Keeps a reference to the curve, which must outlive the table.
 class ArcLengthTable {
 public:
@@ -96,6 +97,7 @@ private:
   std::vector<double> u_;      // interval ends, u_[0] = u_min
   std::vector<double> s_;      // arc length at u_[k] [mm]
   std::vector<unsigned char> level_;  // Patterson level accepted on interval k
+  double speed_ = 0.0;  // the curve's constant speed [mm per parameter unit], else 0 (the table's one interval)
   long build_evaluations_ = 0;
 };
 

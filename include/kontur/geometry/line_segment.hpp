@@ -13,6 +13,7 @@ public:
   [[nodiscard]] Derivatives derivatives(double u, int order) const noexcept override;
   [[nodiscard]] std::vector<double> breakpoints() const override { return {0.0, 1.0}; }
   [[nodiscard]] int polynomial_degree() const noexcept override { return 1; }
+  [[nodiscard]] double constant_speed() const noexcept override { return length_mm(); }
   /// Start point [mm].
   [[nodiscard]] const Vec3& start() const noexcept { return start_; }
   /// End point [mm].
