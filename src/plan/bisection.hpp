@@ -1,33 +1,21 @@
 #pragma once
-// Private to kontur/plan: the bisection of the speed-profile planners (scurve.cpp,
-// banded_profile.cpp) and their test of a distance against a length.
+// Private to kontur/plan: the speed-profile planners' (scurve.cpp, banded_profile.cpp) test of a
+// distance against a length, and the bracketing they search with (geometry/bracket.hpp).
+
+#include <kontur/geometry/bracket.hpp>
 
 namespace kontur::plan::detail {
 
-inline constexpr int kBisections = 200;  // bounded; stops earlier when the interval cannot shrink
-
-// Bisection of [lo, hi] on a predicate true on a lower part and false above it: the last point
-// found true and the first found false. Bounded by kBisections; stops when the interval cannot
-// shrink.
-struct Bracket {
-  double lo, hi;
-};
-template <class LowerPart>
-Bracket bisect(double lo, double hi, LowerPart in_lower_part) noexcept {
-  for (int i = 0; i < kBisections; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    if (!(mid > lo && mid < hi)) break;
-    if (in_lower_part(mid))
-      lo = mid;
-    else
-      hi = mid;
-  }
-  return {lo, hi};
-}
+using kontur::Bracket;
+using kontur::bisect;
+using kontur::narrow_and_bisect;
 
 // Distances that agree to rounding count as equal: speeds handed from one plan to the next may
 // differ in the last bits, and a braking distance 1e-16 mm over the move's length must not turn
 // a feasible stop into an arrival at speed.
-inline bool fits(double needed, double distance) noexcept { return needed <= distance * (1.0 + 1e-12) + 1e-15; }
+inline double fit_margin(double distance) noexcept { return distance * (1.0 + 1e-12) + 1e-15; }
+inline bool fits(double needed, double distance) noexcept { return needed <= fit_margin(distance); }
+// needed - the margin: <= 0 exactly where fits() (a - b <= 0 iff a <= b for finite doubles).
+inline double fit_excess(double needed, double distance) noexcept { return needed - fit_margin(distance); }
 
 }  // namespace kontur::plan::detail

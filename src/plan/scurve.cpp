@@ -48,10 +48,10 @@ double reachable_velocity(double v_from, double distance, const PathLimits& l) n
   if (!(distance > 0.0)) return v_from;
   if (fits(velocity_change_distance(v_from, l.max_velocity, l.max_acceleration, l.max_jerk), distance))
     return l.max_velocity;
-  const Bracket b = bisect(v_from, l.max_velocity, [&](double v) {
-    return fits(velocity_change_distance(v_from, v, l.max_acceleration, l.max_jerk), distance);
-  });
-  return b.lo;
+  const auto excess = [&](double v) {
+    return detail::fit_excess(velocity_change_distance(v_from, v, l.max_acceleration, l.max_jerk), distance);
+  };
+  return detail::narrow_and_bisect(v_from, l.max_velocity, excess(v_from), excess(l.max_velocity), excess).lo;
 }
 
 double braking_velocity(double v_after, double distance, const PathLimits& l) noexcept {
@@ -64,9 +64,10 @@ double braking_velocity(double v_after, double distance, const PathLimits& l) no
     return d;
   };
   if (!(distance > 0.0)) return v_after;
-  if (fits(worst(l.max_velocity), distance)) return l.max_velocity;
-  const Bracket b = bisect(v_after, l.max_velocity, [&](double v) { return fits(worst(v), distance); });
-  return b.lo;
+  const double e_max = detail::fit_excess(worst(l.max_velocity), distance);
+  if (e_max <= 0.0) return l.max_velocity;
+  const auto excess = [&](double v) { return detail::fit_excess(worst(v), distance); };
+  return detail::narrow_and_bisect(v_after, l.max_velocity, excess(v_after), e_max, excess).lo;
 }
 
 ScurveProfile plan_scurve(double distance, double v0, double v1, const PathLimits& l) {

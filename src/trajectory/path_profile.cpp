@@ -2,6 +2,7 @@
 #include <cmath>
 #include <limits>
 
+#include <kontur/geometry/bracket.hpp>
 #include <kontur/trajectory/path_profile.hpp>
 #include <kontur/tolerances.hpp>
 
@@ -92,8 +93,8 @@ double PathProfile::time_at(double s_mm) const noexcept {
   if (!data_) return 0.0;
   const Data& d = *data_;
   // The bisection of first_time_covering on sample(t).s >= s_mm, narrowed first to the phase in
-  // which s_mm is reached (its start does not cover s_mm, the next phase's start does): the same
-  // first time, with a search over the phases' starts and a bisection on one cubic.
+  // which s_mm is reached (its start does not cover s_mm, the next phase's start does), then on
+  // that phase's cubic by regula falsi: the same first time, in a few evaluations.
   const auto covers = [&](std::size_t k) {  // does the start of phase k (k >= 1) cover s_mm?
     const double t = d.phases[k].t0_s;
     if (t >= d.duration_s) return d.end.s >= s_mm;
@@ -108,18 +109,17 @@ double PathProfile::time_at(double s_mm) const noexcept {
       lo_k = mid;
   }
   const ProfilePhase& p = d.phases[lo_k];
-  double lo = lo_k == 0 ? 0.0 : p.t0_s;
-  double hi = hi_k == d.phases.size() ? d.duration_s : std::min(d.phases[hi_k].t0_s, d.duration_s);
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    if (!(mid > lo && mid < hi)) break;
-    const double s = mid >= d.duration_s ? d.end.s : state_in_phase(p, mid, d.s0, d.scale, d.end.s).s;
-    if (s < s_mm)
-      lo = mid;
-    else
-      hi = mid;
-  }
-  return hi;
+  const double lo = lo_k == 0 ? 0.0 : p.t0_s;
+  const double hi = hi_k == d.phases.size() ? d.duration_s : std::min(d.phases[hi_k].t0_s, d.duration_s);
+  const auto covered = [&](double t) {
+    return t >= d.duration_s ? d.end.s : state_in_phase(p, t, d.s0, d.scale, d.end.s).s;
+  };
+  // "not yet covered" as an excess <= 0 (covered exactly: the least positive excess)
+  const auto excess = [&](double t) {
+    const double e = covered(t) - s_mm;
+    return e < 0.0 ? e : std::max(e, std::numeric_limits<double>::denorm_min());
+  };
+  return narrow_and_bisect(lo, hi, covered(lo) - s_mm, covered(hi) - s_mm, excess).hi;
 }
 
 }  // namespace kontur::trajectory
