@@ -104,6 +104,17 @@ double blind_boundary(const Curve& c, double from, double toward, double blind_m
 
 std::vector<MovePiece> split_move(const Curve& c, const ArcLengthTable& table, double feed_mm_s,
                                   const Machine& machine) {
+  if (dynamic_cast<const LineSegment*>(&c) != nullptr) {
+    // A line is one piece: no breakpoint inside, no stationary point, no curvature to cut it by.
+    MovePiece p;
+    p.u0 = c.u_min();
+    p.u1 = c.u_max();
+    p.geometry = path_geometry(c, p.u0, p.u1, tolerances::plan_samples_per_span, 0.0);
+    p.end = {std::numeric_limits<double>::infinity(), 0.0};
+    p.s0_mm = 0.0;
+    p.s1_mm = table.length_mm();
+    return {p};
+  }
   const std::vector<double> bp = c.breakpoints();
   // Where the pieces may end: the breakpoints and the stationary points (C' = 0: the path stops).
   struct Cut {
@@ -112,11 +123,8 @@ std::vector<MovePiece> split_move(const Curve& c, const ArcLengthTable& table, d
   };
   std::vector<Cut> cuts;
   for (double u : bp) cuts.push_back({u, true, false});
-  // (a line's C' is constant: it has none)
-  const bool line = dynamic_cast<const LineSegment*>(&c) != nullptr;
-  for (double u : line ? std::vector<double>{}
-                       : stationary_points(c, tolerances::plan_stationary_speed_relative,
-                                           tolerances::plan_stationary_search_samples)) {
+  for (double u : stationary_points(c, tolerances::plan_stationary_speed_relative,
+                                    tolerances::plan_stationary_search_samples)) {
     const auto at = std::lower_bound(cuts.begin(), cuts.end(), u, [](const Cut& a, double b) { return a.u < b; });
     if (at != cuts.end() && at->u == u) at->stationary = true;
     else cuts.insert(at, {u, false, true});
