@@ -522,6 +522,49 @@ TEST(GcodeReader, HeapDoesNotGrowWithTheProgramsLength) {
 }
 #endif
 
+// The two passes of for_each_block: a program whose blocks fit in gcode_kept_blocks_bytes is
+// read once and its kept blocks handed on; a longer one is read again (its kept blocks dropped, the
+// memory bounded). Either way the second pass hands on the blocks a fresh reading gives.
+TEST(GcodeReader, ValidatedBlocksAreKeptWithinTheirMemoryBoundAndReadAgainBeyond) {
+  const std::string path = ::testing::TempDir() + "kontur_validated.ngc";
+  const auto write = [&](int lines) {
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fprintf(f, "G21 G90 F1000\n");
+    for (int i = 0; i < lines; ++i) std::fprintf(f, "G1 X%d.25 Y%d\n", i % 100, i % 7);
+    std::fprintf(f, "G5.2 X0 Y0 L3\nX10 Y10\nX20 Y0\nX30 Y10\nG5.3\nM2\n");  // and a spline
+    std::fclose(f);
+  };
+  const auto same_as_a_fresh_reading = [&](const ValidatedProgram& v) {
+    std::vector<Block> fresh;
+    Reader r(path, v.options);
+    Block b;
+    while (r.next(b)) fresh.push_back(b);
+    std::size_t k = 0;
+    for_each_validated_block(v, [&](const Block& handed) {
+      ASSERT_LT(k, fresh.size());
+      EXPECT_EQ(handed.location.line, fresh[k].location.line);
+      EXPECT_EQ(handed.end, fresh[k].end);
+      EXPECT_EQ(handed.geometry.index(), fresh[k].geometry.index());
+      ++k;
+    });
+    EXPECT_EQ(k, fresh.size());
+  };
+  write(1000);
+  const ValidatedProgram small = validate_program(path);
+  EXPECT_TRUE(small.kept_blocks);
+  EXPECT_EQ(small.blocks.size(), 1001u);
+  same_as_a_fresh_reading(small);
+  // More blocks than the bound holds (each takes at least sizeof(Block)).
+  write(static_cast<int>(tolerances::gcode_kept_blocks_bytes / sizeof(Block)) + 100);
+  const ValidatedProgram large = validate_program(path);
+  EXPECT_FALSE(large.kept_blocks);
+  EXPECT_TRUE(large.blocks.empty());
+  EXPECT_EQ(large.blocks.capacity(), 0u);
+  same_as_a_fresh_reading(large);
+  std::remove(path.c_str());
+}
+
 TEST(GcodeExpression, OperatorsFunctionsAndPrecedence) {
   ParameterTable p;
   p.set_named("XSCALE", 2.0);

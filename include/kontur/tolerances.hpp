@@ -157,6 +157,10 @@ inline constexpr double gcode_max_value = 1e9;
 inline constexpr long gcode_max_loop_iterations = 10000000;
 /// Largest subroutine file read whole into memory (a LinuxCNC `o<name> call` of `name.ngc`) [bytes].
 inline constexpr std::uintmax_t gcode_max_subroutine_file_bytes = 64u << 20;
+/// Largest memory the blocks of a validated program may take to be kept for the second pass
+/// (gcode::validate_program) [bytes]: a program within it is read once; a longer one is read again,
+/// so that the memory stays bounded whatever the program's length.
+inline constexpr std::size_t gcode_kept_blocks_bytes = 32u << 20;
 /// Lines at the beginning of a program looked at to tell its dialect (gcode::detect_dialect): marks
 /// such as a program number or a Sinumerik header come first.
 inline constexpr int gcode_dialect_detection_lines = 400;

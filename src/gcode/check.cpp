@@ -1,5 +1,8 @@
 #include <kontur/error.hpp>
 #include <kontur/gcode/reader.hpp>
+#include <kontur/tolerances.hpp>
+
+#include <variant>
 
 #include <fmt/format.h>
 
@@ -27,19 +30,47 @@ ProgramSummary check_program(const std::string& path, const ReaderOptions& optio
   return s;
 }
 
+namespace {
+
+// The memory a block takes [bytes]: itself and a spline's arrays.
+std::size_t block_bytes(const Block& b) {
+  std::size_t n = sizeof(Block);
+  if (const auto* nurbs = std::get_if<NurbsCurve>(&b.geometry))
+    n += 2 * (nurbs->knots().size() * sizeof(double) + nurbs->points().size() * sizeof(Vec3) +
+              nurbs->weights().size() * sizeof(double));  // (and its span polynomials, about as much)
+  return n;
+}
+
+}  // namespace
+
 ValidatedProgram validate_program(const std::string& path, const ReaderOptions& options,
                                   const std::function<void(const Block&)>& seen) {
-  Reader validate(path, options);  // the whole program, no block kept
+  Reader validate(path, options);  // the whole program: an error anywhere stops here
+  ValidatedProgram v{path, options, {}, {}, true};
+  std::size_t kept_bytes = 0;
   Block b;
-  while (validate.next(b))  // every block, compensated: an error anywhere stops here
+  while (validate.next(b)) {  // every block, compensated
     if (seen) seen(b);
-  ValidatedProgram v{path, options, validate.dialect()};
+    if (!v.kept_blocks) continue;
+    kept_bytes += block_bytes(b);
+    if (kept_bytes <= tolerances::gcode_kept_blocks_bytes) {
+      v.blocks.push_back(b);
+    } else {  // too long to keep: the second pass reads it again
+      v.kept_blocks = false;
+      std::vector<Block>().swap(v.blocks);
+    }
+  }
+  v.dialect = validate.dialect();
   v.options.dialect = v.dialect.dialect;
   v.options.dialect_reason = v.dialect.reason;
   return v;
 }
 
 void for_each_validated_block(const ValidatedProgram& program, const std::function<void(const Block&)>& on_block) {
+  if (program.kept_blocks) {
+    for (const Block& b : program.blocks) on_block(b);
+    return;
+  }
   Reader reader(program.path, program.options);  // the same program, now known to be valid
   Block b;
   while (reader.next(b)) on_block(b);

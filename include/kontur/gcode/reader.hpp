@@ -116,15 +116,21 @@ struct ValidatedProgram {
   std::string path;
   ReaderOptions options;  ///< with the dialect the first pass read it in
   DialectChoice dialect;  ///< that dialect, and why
+  /// The first pass's blocks, when they fit in tolerances::gcode_kept_blocks_bytes (kept_blocks
+  /// true): the second pass hands them on instead of reading the program again.
+  std::vector<Block> blocks;
+  bool kept_blocks = false;
 };
 
 /// The first pass alone: reads the whole program, throwing InputError at the first error. `seen`
 /// (optional) sees every block of the valid part as it goes: to learn what the program does (which
-/// axes it moves) before any block is handed on, without a pass of its own.
+/// axes it moves) before any block is handed on, without a pass of its own. The blocks are kept
+/// for the second pass while they fit in tolerances::gcode_kept_blocks_bytes.
 ValidatedProgram validate_program(const std::string& path, const ReaderOptions& options = {},
                                   const std::function<void(const Block&)>& seen = {});
 
-/// The second pass alone: reads a validated program again and calls `on_block` for every block.
+/// The second pass alone: calls `on_block` for every block of a validated program (its kept blocks,
+/// else read again).
 void for_each_validated_block(const ValidatedProgram& program, const std::function<void(const Block&)>& on_block);
 
 }  // namespace kontur::gcode
