@@ -59,17 +59,21 @@ double polyline_distance(const std::vector<Vec3>& v, const Vec3& p, long first, 
   const long lines = static_cast<long>(v.size()) - 1;
   first = std::max(first, 0L);
   last = std::min(last, lines - 1);
-  double d = std::numeric_limits<double>::infinity();
+  double d2 = std::numeric_limits<double>::infinity();  // (the root of the least square: the same bits)
   for (long k = first; k <= last; ++k)
-    d = std::min(d, segment_distance(p, v[static_cast<std::size_t>(k)], v[static_cast<std::size_t>(k + 1)]));
-  return d;
+    d2 = std::min(d2, segment_distance_squared(p, v[static_cast<std::size_t>(k)], v[static_cast<std::size_t>(k + 1)]));
+  return std::sqrt(d2);
 }
 
-double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) noexcept {
+double segment_distance_squared(const Vec3& p, const Vec3& a, const Vec3& b) noexcept {
   const Vec3 ab = b - a;
   const double len2 = ab.squaredNorm();
   const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (p - a - t * ab).norm();
+  return (p - a - t * ab).squaredNorm();
+}
+
+double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) noexcept {
+  return std::sqrt(segment_distance_squared(p, a, b));
 }
 
 }  // namespace kontur

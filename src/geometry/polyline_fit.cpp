@@ -297,12 +297,24 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
       for (std::size_t i = 0; i <= degree; ++i) c += smp.b[i] * points[smp.span + i];
       samples[q] = c;
     }
+    // (in squares; a sample whose own line or any other is no farther than the span's largest so
+    // far cannot raise it: the rest of its lines are skipped)
     for (std::size_t j = 0; j < m; ++j) {
-      double d = 0.0;
-      for (std::size_t q = sample_start[j]; q < sample_start[j + 1]; ++q)
-        d = std::max(d, polyline_distance(v, samples[q], window[sample_basis[q].piece].first,
-                                          window[sample_basis[q].piece].second));
-      deviation[j] = d;
+      double d2 = 0.0;
+      for (std::size_t q = sample_start[j]; q < sample_start[j + 1]; ++q) {
+        const std::size_t k = sample_basis[q].piece;
+        const auto own = static_cast<long>(pieces[k].line);
+        const auto line_d2 = [&](long i) {
+          return segment_distance_squared(samples[q], v[static_cast<std::size_t>(i)], v[static_cast<std::size_t>(i) + 1]);
+        };
+        double near2 = line_d2(own);
+        for (long i = std::max(window[k].first, 0L); i <= std::min(window[k].second, static_cast<long>(n) - 1) &&
+                                                     near2 > d2;
+             ++i)
+          if (i != own) near2 = std::min(near2, line_d2(i));
+        d2 = std::max(d2, near2);
+      }
+      deviation[j] = std::sqrt(d2);
     }
     std::fill(vertex_deviation.begin(), vertex_deviation.end(), 0.0);
     for (std::size_t i = 1; i < n; ++i) {

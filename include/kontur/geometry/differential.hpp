@@ -33,6 +33,8 @@ namespace kontur {
 [[nodiscard]] double chord_error(const Curve& curve, double u0, double u1, int samples = 16) noexcept;
 /// Distance [mm] from the point p to the segment [a, b] (to a when a = b).
 [[nodiscard]] double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) noexcept;
+/// Its square [mm^2] (segment_distance is its square root, bit for bit): for comparisons.
+[[nodiscard]] double segment_distance_squared(const Vec3& p, const Vec3& a, const Vec3& b) noexcept;
 /// Distance [mm] from p to the lines first .. last (indices of lines, clamped to the polyline) of
 /// the polyline through `vertices`: line i runs from vertices[i] to vertices[i + 1]. Infinite if
 /// no line is in the range.
