@@ -383,6 +383,11 @@ TEST(ExtraAxes, PrepareLearnsTheMovedAxesAndRunValidatesAProgramChangedSince) {
     EXPECT_NE(std::string(e.what()).find(":8:"), std::string::npos) << e.what();
   }
   EXPECT_EQ(setpoints, 0);
+  // A prepare() that finds the error leaves nothing validated behind: run() of the unchanged file
+  // finds it again (the kept blocks of the first version are not run).
+  EXPECT_THROW((void)pipeline.prepare(path), InputError);
+  EXPECT_THROW((void)pipeline.run(path, events), InputError);
+  EXPECT_EQ(setpoints, 0);
   std::filesystem::remove(path);
 }
 

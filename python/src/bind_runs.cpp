@@ -114,7 +114,11 @@ py::dict result_dict(const RunResult& r, const AxisLayout& layout) {
 py::tuple run(const std::string& program, const Machine& machine, const RunArgs& args) {
   validate(machine);
   Pipeline pipeline(machine, pipeline_options(program, machine, args));
-  const AxisLayout layout = pipeline.prepare(program);
+  AxisLayout layout;
+  {
+    py::gil_scoped_release release;  // (prepare() reads the whole program, validating it)
+    layout = pipeline.prepare(program);
+  }
   std::vector<double> rows;
   RunResult result;
   SignalCheck blocks(256), setpoints(1 << 16);
@@ -144,6 +148,7 @@ class RunStream {
   RunStream(const std::string& program, const Machine& machine, const RunArgs& args, long chunk)
       : program_(program), pipeline_((validate(machine), machine), pipeline_options(program, machine, args)), chunk_(chunk) {
     if (chunk_ < 1) throw InputError("chunk-positive", "chunk = " + std::to_string(chunk) + ": expected at least 1 setpoint");
+    py::gil_scoped_release release;  // (prepare() reads the whole program, validating it)
     layout_ = pipeline_.prepare(program);
   }
   RunStream(const RunStream&) = delete;

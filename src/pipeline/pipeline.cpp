@@ -103,6 +103,7 @@ const AxisLayout& Pipeline::prepare(const std::string& program) {
     seen = [&](const gcode::Block& b) {
       for (std::size_t e = 0; e < moved.size(); ++e) moved[e] = moved[e] || b.extra_start[e] != b.extra_end[e];
     };
+  prepared_.reset();  // (a program that fails to validate leaves nothing validated behind)
   prepared_stamp_ = file_stamp(program);
   prepared_ = gcode::validate_program(program, reader_options(), seen);
   for (int e = 0; e < extra_axis_count; ++e)
