@@ -198,6 +198,9 @@ TEST(ArcLengthTable, InverseOnSeedAndRandomCurves) {
     const double L = table.length_mm();
     const double range = spans.u_max() - spans.u_min();
     EXPECT_NEAR(L, gauss_kronrod_length(spans).length_mm, 1e-12 * L);
+    // the ends are the table's own values: 0 and the length, exactly
+    EXPECT_EQ(table.s_of_u(spans.u_min()), 0.0);
+    EXPECT_EQ(table.s_of_u(spans.u_max()), L);
     EXPECT_EQ(table.u_of_s(0.0), spans.u_min());
     EXPECT_EQ(table.u_of_s(L), spans.u_max());
     EXPECT_EQ(table.u_of_s(-1.0), spans.u_min());

@@ -285,7 +285,8 @@ ArcLengthTable::ArcLengthTable(const Curve& curve, double rel_tol) : curve_(&cur
 
 double ArcLengthTable::s_of_u(double u) const noexcept {
   u = std::clamp(u, u_.front(), u_.back());
-  if (speed_ > 0.0) return u == u_.back() ? s_.back() : speed_ * (u - u_.front());
+  if (u == u_.back()) return s_.back();  // the end: the length itself (no quadrature of the last interval)
+  if (speed_ > 0.0) return speed_ * (u - u_.front());
   const auto it = std::upper_bound(u_.begin(), u_.end(), u);
   const std::size_t k = (it == u_.begin()) ? 0 : std::min<std::size_t>(static_cast<std::size_t>(it - u_.begin()) - 1, u_.size() - 2);
   if (u == u_[k]) return s_[k];
