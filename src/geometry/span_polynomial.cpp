@@ -68,17 +68,34 @@ PolyCoeffs SpanPolynomial::coefficients(int axis, double origin) const noexcept 
   return shift_polynomial(c, degree, -(u_start - origin));
 }
 
+namespace {
+
+// Horner's scheme for the value and the first `Order` derivatives at once (h[k]: the k-th
+// derivative over k!); the higher ones are not computed (what a caller does not ask for).
+template <int Order>
+void horner(const std::array<Eigen::Vector4d, tolerances::max_degree + 1>& coeff, int degree, double t,
+            Eigen::Vector4d (&h)[4]) noexcept {
+  h[0] = coeff[static_cast<std::size_t>(degree)];
+  for (int k = 1; k < 4; ++k) h[k].setZero();
+  for (int k = degree - 1; k >= 0; --k) {
+    if constexpr (Order >= 3) h[3] = h[3] * t + h[2];
+    if constexpr (Order >= 2) h[2] = h[2] * t + h[1];
+    if constexpr (Order >= 1) h[1] = h[1] * t + h[0];
+    h[0] = h[0] * t + coeff[static_cast<std::size_t>(k)];
+  }
+}
+
+}  // namespace
+
 Derivatives SpanPolynomial::derivatives(double u, int order) const noexcept {
   order = std::clamp(order, 0, tolerances::max_derivative);
   const double t = u - u_start;
-  // Horner's scheme for value and the first three derivatives at once.
-  Eigen::Vector4d h[4] = {coeff[static_cast<std::size_t>(degree)], Eigen::Vector4d::Zero(), Eigen::Vector4d::Zero(),
-                          Eigen::Vector4d::Zero()};
-  for (int k = degree - 1; k >= 0; --k) {
-    h[3] = h[3] * t + h[2];
-    h[2] = h[2] * t + h[1];
-    h[1] = h[1] * t + h[0];
-    h[0] = h[0] * t + coeff[static_cast<std::size_t>(k)];
+  Eigen::Vector4d h[4];
+  switch (order) {
+    case 0: horner<0>(coeff, degree, t, h); break;
+    case 1: horner<1>(coeff, degree, t, h); break;
+    case 2: horner<2>(coeff, degree, t, h); break;
+    default: horner<3>(coeff, degree, t, h); break;
   }
   h[2] *= 2.0;
   h[3] *= 6.0;
