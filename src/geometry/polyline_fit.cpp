@@ -256,7 +256,8 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
       for (std::size_t k = 0; k <= degree; ++k) {
         const std::size_t ck = t.first + k;
         if (ck < ci || ck >= first_free + free) continue;  // lower triangle: row >= column
-        a.coeffRef(static_cast<Eigen::Index>(ck - first_free), fi) += weight * t.b[i] * t.b[k];
+        // (column fi holds rows fi .. fi + degree in order: the entry's place without a search)
+        a.valuePtr()[a.outerIndexPtr()[fi] + static_cast<Eigen::Index>(ck - ci)] += weight * t.b[i] * t.b[k];
       }
     }
   };
