@@ -303,9 +303,15 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
     // |K| phi^2 / 8 and the margin of its change (a narrow peak of |K| is refined above). A sample
     // with no regular neighbour and each refined peak: a pair of its own, raised by the margins of
     // the ranges.
+    // (the turn phi between regular neighbours k and k + 1, the same for every axis)
+    std::vector<double> turn(n, 0.0);
+    for (std::size_t k = 0; k + 1 < n; ++k)
+      if (kappa[k] >= 0.0 && kappa[k + 1] >= 0.0)
+        turn[k] = 2.0 * std::asin(std::min(1.0, 0.5 * (locals[k].tangent - locals[k + 1].tangent).norm()));
     for (int i = 0; i < 3; ++i) {
       const double raise_t = m * (hi_t_raw[i] - lo.tangent[i]), raise_k = m * (hi_k_raw[i] - lo.curvature[i]);
       std::vector<std::array<double, 2>> pairs;
+      pairs.reserve(n + peaks.size());
       const auto alone = [&](const Local& l) {
         pairs.push_back({std::min(1.0, std::abs(l.tangent[i]) + raise_t), std::abs(l.curvature[i]) + raise_k});
       };
@@ -315,7 +321,7 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
         if (!left && !right) alone(locals[k]);
         if (!right) continue;
         const Local &a = locals[k], &b = locals[k + 1];
-        const double phi = 2.0 * std::asin(std::min(1.0, 0.5 * (a.tangent - b.tangent).norm()));
+        const double phi = turn[k];
         const double ta = std::abs(a.tangent[i]), tb = std::abs(b.tangent[i]);
         const double ka = std::abs(a.curvature[i]), kb = std::abs(b.curvature[i]);
         const double kappa_ab = std::max(kappa[k], kappa[k + 1]);
