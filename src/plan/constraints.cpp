@@ -94,9 +94,12 @@ std::vector<std::array<double, 2>> PathGeometry::axis_pairs(int i) const {
 void PathGeometry::set_pairs(int i, std::vector<std::array<double, 2>> points) {
   // The front of pairs no other dominates, by |t| rising (so |K| falling).
   std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a[0] > b[0] || (a[0] == b[0] && a[1] > b[1]); });
-  std::vector<std::array<double, 2>> front;  // by |t| falling, |K| rising
-  for (const auto& q : points)
-    if (front.empty() || q[1] > front.back()[1]) front.push_back(q);
+  // by |t| falling, |K| rising: kept in place (a subsequence of the sorted points)
+  std::size_t kept = 0;
+  for (std::size_t r = 0; r < points.size(); ++r)
+    if (kept == 0 || points[r][1] > points[kept - 1][1]) points[kept++] = points[r];
+  points.resize(kept);
+  std::vector<std::array<double, 2>>& front = points;
   // Too many: merge the neighbours whose componentwise maximum adds the least area.
   while (front.size() > static_cast<std::size_t>(tolerances::plan_acceleration_pairs)) {
     std::size_t best = 0;
