@@ -234,6 +234,7 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
   std::vector<Vec3> points = ctrl;          // the fitted control points
   std::vector<double> deviation(m);
   std::vector<Vec3> samples(sample_basis.size());
+  std::vector<double> own_d2(sample_basis.size());  // a sample's squared distance from its own line
   std::vector<char> raise(m);
 
   // The normal equations of the free control points: a banded matrix (three off-diagonals) whose
@@ -298,23 +299,34 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
       for (std::size_t i = 0; i <= degree; ++i) c += smp.b[i] * points[smp.span + i];
       samples[q] = c;
     }
-    // (in squares; a sample whose own line or any other is no farther than the span's largest so
-    // far cannot raise it: the rest of its lines are skipped)
+    // Each span's largest distance of a sample from its lines (the nearest of them), in squares.
+    // A sample's own line bounds its distance from above: the sample farthest from its own line is
+    // measured first, then only the samples whose own line is farther than the largest so far, each
+    // until one of its lines is no farther (then it cannot raise the largest): the same largest.
     for (std::size_t j = 0; j < m; ++j) {
-      double d2 = 0.0;
+      const auto line_d2 = [&](std::size_t q, long i) {
+        return segment_distance_squared(samples[q], v[static_cast<std::size_t>(i)], v[static_cast<std::size_t>(i) + 1]);
+      };
+      const auto own_line = [&](std::size_t q) { return static_cast<long>(pieces[sample_basis[q].piece].line); };
+      std::size_t first = sample_start[j];
       for (std::size_t q = sample_start[j]; q < sample_start[j + 1]; ++q) {
+        own_d2[q] = line_d2(q, own_line(q));
+        if (own_d2[q] > own_d2[first]) first = q;
+      }
+      double d2 = 0.0;
+      const auto measure = [&](std::size_t q) {
         const std::size_t k = sample_basis[q].piece;
-        const auto own = static_cast<long>(pieces[k].line);
-        const auto line_d2 = [&](long i) {
-          return segment_distance_squared(samples[q], v[static_cast<std::size_t>(i)], v[static_cast<std::size_t>(i) + 1]);
-        };
-        double near2 = line_d2(own);
+        const long own = own_line(q);
+        double near2 = own_d2[q];
         for (long i = std::max(window[k].first, 0L); i <= std::min(window[k].second, static_cast<long>(n) - 1) &&
                                                      near2 > d2;
              ++i)
-          if (i != own) near2 = std::min(near2, line_d2(i));
+          if (i != own) near2 = std::min(near2, line_d2(q, i));
         d2 = std::max(d2, near2);
-      }
+      };
+      if (sample_start[j] < sample_start[j + 1]) measure(first);
+      for (std::size_t q = sample_start[j]; q < sample_start[j + 1]; ++q)
+        if (q != first && own_d2[q] > d2) measure(q);
       deviation[j] = std::sqrt(d2);
     }
     std::fill(vertex_deviation.begin(), vertex_deviation.end(), 0.0);
