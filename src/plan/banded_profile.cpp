@@ -139,7 +139,7 @@ std::optional<trajectory::PathProfile> plan_banded_profile(double distance, doub
   if (!detail::fits(needed(floor_v), distance)) return std::nullopt;
   const double vp = detail::fits(needed(cap), distance)
                         ? cap
-                        : detail::bisect(floor_v, cap, [&](double v) { return detail::fits(needed(v), distance); }).lo;
+                        : bisect(floor_v, cap, [&](double v) { return detail::fits(needed(v), distance); }).lo;
   if (!(vp > 0.0)) return std::nullopt;
   const Change up = change_up(v0, vp, bands), down = change_up(v1, vp, bands);
   const double cruise = std::max(0.0, distance - up.distance_mm - down.distance_mm) / vp;

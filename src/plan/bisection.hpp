@@ -1,14 +1,10 @@
 #pragma once
 // Private to kontur/plan: the speed-profile planners' (scurve.cpp, banded_profile.cpp) test of a
-// distance against a length, and the bracketing they search with (geometry/bracket.hpp).
+// distance against a length (they search with geometry/bracket.hpp).
 
 #include <kontur/geometry/bracket.hpp>
 
 namespace kontur::plan::detail {
-
-using kontur::Bracket;
-using kontur::bisect;
-using kontur::narrow_and_bisect;
 
 // Distances that agree to rounding count as equal: speeds handed from one plan to the next may
 // differ in the last bits, and a braking distance 1e-16 mm over the move's length must not turn

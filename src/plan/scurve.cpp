@@ -7,8 +7,6 @@
 namespace kontur::plan {
 namespace {
 
-using detail::Bracket;
-using detail::bisect;
 using detail::fits;
 
 // Phases of one speed change from va to vb (vb >= va): jerk time and constant-acceleration time.
@@ -46,12 +44,12 @@ double velocity_change_distance(double va, double vb, double amax, double jmax) 
 
 double reachable_velocity(double v_from, double distance, const PathLimits& l) noexcept {
   if (!(distance > 0.0)) return v_from;
-  if (fits(velocity_change_distance(v_from, l.max_velocity, l.max_acceleration, l.max_jerk), distance))
-    return l.max_velocity;
   const auto excess = [&](double v) {
     return detail::fit_excess(velocity_change_distance(v_from, v, l.max_acceleration, l.max_jerk), distance);
   };
-  return detail::narrow_and_bisect(v_from, l.max_velocity, excess(v_from), excess(l.max_velocity), excess).lo;
+  const double e_max = excess(l.max_velocity);
+  if (e_max <= 0.0) return l.max_velocity;
+  return narrow_and_bisect(v_from, l.max_velocity, excess(v_from), e_max, excess).lo;
 }
 
 double braking_velocity(double v_after, double distance, const PathLimits& l) noexcept {
@@ -67,7 +65,7 @@ double braking_velocity(double v_after, double distance, const PathLimits& l) no
   const double e_max = detail::fit_excess(worst(l.max_velocity), distance);
   if (e_max <= 0.0) return l.max_velocity;
   const auto excess = [&](double v) { return detail::fit_excess(worst(v), distance); };
-  return detail::narrow_and_bisect(v_after, l.max_velocity, excess(v_after), e_max, excess).lo;
+  return narrow_and_bisect(v_after, l.max_velocity, excess(v_after), e_max, excess).lo;
 }
 
 ScurveProfile plan_scurve(double distance, double v0, double v1, const PathLimits& l) {

@@ -1,6 +1,6 @@
 #pragma once
 // The first time at which a motion law s(t) (non-decreasing) has covered a distance: bisection on
-// its own sample(), shared by the S-curve and the phase profile.
+// its own sample() (the S-curve's; PathProfile::time_at narrows to one phase first).
 namespace kontur::trajectory {
 
 /// The first time [s] in [0, profile.duration()] at which profile.sample(t).s >= s_mm [mm];

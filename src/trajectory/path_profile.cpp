@@ -95,22 +95,14 @@ double PathProfile::time_at(double s_mm) const noexcept {
   // The bisection of first_time_covering on sample(t).s >= s_mm, narrowed first to the phase in
   // which s_mm is reached (its start does not cover s_mm, the next phase's start does), then on
   // that phase's cubic by regula falsi: the same first time, in a few evaluations.
-  const auto covers = [&](std::size_t k) {  // does the start of phase k (k >= 1) cover s_mm?
-    const double t = d.phases[k].t0_s;
-    if (t >= d.duration_s) return d.end.s >= s_mm;
-    return state_in_phase(d.phases[k], t, d.s0, d.scale, d.end.s).s >= s_mm;
+  const auto short_of = [&](const ProfilePhase& q) {  // the phase's start does not cover s_mm
+    return q.t0_s >= d.duration_s ? d.end.s < s_mm : state_in_phase(q, q.t0_s, d.s0, d.scale, d.end.s).s < s_mm;
   };
-  std::size_t lo_k = 0, hi_k = d.phases.size();  // phase lo_k's start does not cover (or k = 0)
-  while (hi_k - lo_k > 1) {
-    const std::size_t mid = lo_k + (hi_k - lo_k) / 2;
-    if (covers(mid))
-      hi_k = mid;
-    else
-      lo_k = mid;
-  }
-  const ProfilePhase& p = d.phases[lo_k];
-  const double lo = lo_k == 0 ? 0.0 : p.t0_s;
-  const double hi = hi_k == d.phases.size() ? d.duration_s : std::min(d.phases[hi_k].t0_s, d.duration_s);
+  // the first phase after the first one whose start covers s_mm (end: none), and the one before
+  const auto next = std::partition_point(d.phases.begin() + 1, d.phases.end(), short_of);
+  const ProfilePhase& p = *(next - 1);
+  const double lo = next - 1 == d.phases.begin() ? 0.0 : p.t0_s;
+  const double hi = next == d.phases.end() ? d.duration_s : std::min(next->t0_s, d.duration_s);
   const auto covered = [&](double t) {
     return t >= d.duration_s ? d.end.s : state_in_phase(p, t, d.s0, d.scale, d.end.s).s;
   };

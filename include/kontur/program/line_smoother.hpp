@@ -8,9 +8,8 @@
 // blender's), each line between them becomes its piece of the curve (a move with the line's
 // source line, feed and tag, and the programmed lines it replaces, which the checker measures
 // every setpoint against). Collinear lines (every junction already smooth) stay lines. A run the
-// fit cannot keep within the tolerance is halved, and each half
-// fitted apart (a programmed corner between them), down to runs too short to smooth, which stay as
-// programmed.
+// fit cannot keep within the tolerance is halved, and each half fitted apart (a programmed corner
+// between them), down to runs too short to smooth, which stay as programmed.
 //
 // The window is bounded: a run is cut after tolerances::smooth_max_run_lines lines. It is fitted
 // with the lines after them up to tolerances::smooth_run_overlap_tolerances of arc length (at most
