@@ -231,6 +231,11 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
   std::vector<double> factor(m, 1.0), vertex_factor(m, 1.0);
   std::vector<double> vertex_deviation(m);
   const double target = tolerances::smooth_tolerance_share * tolerance_mm;
+  // the least square [mm^2] whose root is beyond the target (the root is monotone: a square is
+  // beyond it exactly when its root is)
+  double target2_beyond = target * target;
+  while (std::sqrt(target2_beyond) > target) target2_beyond = std::nextafter(target2_beyond, 0.0);
+  while (!(std::sqrt(target2_beyond) > target)) target2_beyond = std::nextafter(target2_beyond, std::numeric_limits<double>::infinity());
   std::vector<Vec3> points = ctrl;          // the fitted control points
   std::vector<double> deviation(m);
   std::vector<Vec3> samples(sample_basis.size());
@@ -299,36 +304,6 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
       for (std::size_t i = 0; i <= degree; ++i) c += smp.b[i] * points[smp.span + i];
       samples[q] = c;
     }
-    // Each span's largest distance of a sample from its lines (the nearest of them), in squares.
-    // A sample's own line bounds its distance from above: the sample farthest from its own line is
-    // measured first, then only the samples whose own line is farther than the largest so far, each
-    // until one of its lines is no farther (then it cannot raise the largest): the same largest.
-    for (std::size_t j = 0; j < m; ++j) {
-      const auto line_d2 = [&](std::size_t q, long i) {
-        return segment_distance_squared(samples[q], v[static_cast<std::size_t>(i)], v[static_cast<std::size_t>(i) + 1]);
-      };
-      const auto own_line = [&](std::size_t q) { return static_cast<long>(pieces[sample_basis[q].piece].line); };
-      std::size_t first = sample_start[j];
-      for (std::size_t q = sample_start[j]; q < sample_start[j + 1]; ++q) {
-        own_d2[q] = line_d2(q, own_line(q));
-        if (own_d2[q] > own_d2[first]) first = q;
-      }
-      double d2 = 0.0;
-      const auto measure = [&](std::size_t q) {
-        const std::size_t k = sample_basis[q].piece;
-        const long own = own_line(q);
-        double near2 = own_d2[q];
-        for (long i = std::max(window[k].first, 0L); i <= std::min(window[k].second, static_cast<long>(n) - 1) &&
-                                                     near2 > d2;
-             ++i)
-          if (i != own) near2 = std::min(near2, line_d2(q, i));
-        d2 = std::max(d2, near2);
-      };
-      if (sample_start[j] < sample_start[j + 1]) measure(first);
-      for (std::size_t q = sample_start[j]; q < sample_start[j + 1]; ++q)
-        if (q != first && own_d2[q] > d2) measure(q);
-      deviation[j] = std::sqrt(d2);
-    }
     std::fill(vertex_deviation.begin(), vertex_deviation.end(), 0.0);
     for (std::size_t i = 1; i < n; ++i) {
       const std::size_t j = vertex_span[i];  // the span that starts at vertex i, or has it inside
@@ -340,8 +315,56 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
       if (j > 0 && spans[j].start == s[i]) vertex_deviation[j - 1] = std::max(vertex_deviation[j - 1], d);
       vertex_deviation[j] = std::max(vertex_deviation[j], d);
     }
-    for (std::size_t j = 0; j < m; ++j) result.deviation[j] = std::max(deviation[j], vertex_deviation[j]);
-    const double worst = *std::max_element(result.deviation.begin(), result.deviation.end());
+    // A sample's distance from the lines is the nearest of its window's lines, in squares; its own
+    // line bounds it from above. First each span is judged: does a sample stray beyond the target?
+    // Only samples whose own line is beyond it can, and each is measured until a line is within it.
+    // Only when none strays (the fit is kept) is the largest distance measured exactly: the sample
+    // farthest from its own line first, then only those whose own line is farther than the largest
+    // so far, each until one of its lines is no farther (then it cannot raise the largest).
+    const auto line_d2 = [&](std::size_t q, long i) {
+      return segment_distance_squared(samples[q], v[static_cast<std::size_t>(i)], v[static_cast<std::size_t>(i) + 1]);
+    };
+    const auto own_line = [&](std::size_t q) { return static_cast<long>(pieces[sample_basis[q].piece].line); };
+    // the nearest line's distance from sample q [mm^2], or one below `floor2` when that is below it
+    const auto nearest_d2 = [&](std::size_t q, double floor2) {
+      const std::size_t k = sample_basis[q].piece;
+      const long own = own_line(q);
+      double near2 = own_d2[q];
+      for (long i = std::max(window[k].first, 0L); i <= std::min(window[k].second, static_cast<long>(n) - 1) &&
+                                                   near2 >= floor2;
+           ++i)
+        if (i != own) near2 = std::min(near2, line_d2(q, i));
+      return near2;
+    };
+    std::size_t farthest = 0;
+    for (std::size_t q = 0; q < samples.size(); ++q) {
+      own_d2[q] = line_d2(q, own_line(q));
+      if (own_d2[q] > own_d2[farthest]) farthest = q;
+    }
+    bool strays = false;
+    for (std::size_t j = 0; j < m; ++j) {
+      deviation[j] = 0.0;  // within the target (its exact value is not needed)
+      for (std::size_t q = sample_start[j]; q < sample_start[j + 1]; ++q)
+        if (own_d2[q] >= target2_beyond) {
+          const double near2 = nearest_d2(q, target2_beyond);
+          if (near2 >= target2_beyond) {
+            deviation[j] = std::sqrt(near2);  // beyond the target: the weights rise
+            strays = true;
+            break;
+          }
+        }
+    }
+    double worst = 0.0;
+    if (!strays) {
+      double d2 = samples.empty() ? 0.0 : nearest_d2(farthest, 0.0);
+      for (std::size_t q = 0; q < samples.size(); ++q)
+        if (q != farthest && own_d2[q] > d2) d2 = std::max(d2, nearest_d2(q, d2));
+      worst = std::sqrt(d2);
+    }
+    for (std::size_t j = 0; j < m; ++j) {
+      result.deviation[j] = std::max(deviation[j], vertex_deviation[j]);
+      worst = std::max(worst, result.deviation[j]);
+    }
     if (worst <= target) {
       result.fit = PolylineFit{NurbsCurve(NurbsData{degree, knots, points, {}}), s, worst, iteration};
       return result;
