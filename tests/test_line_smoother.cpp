@@ -326,6 +326,53 @@ TEST(LineSmoother, CornersExactStopsShortRunsAndRapidsStayAsProgrammed) {
   for (const auto& m : rapids) EXPECT_FALSE(m.lines.has_value());
 }
 
+// Regression guard: random_lines_0.001in (LinuxCNC's test of a random walk of lines 2.5
+// tolerances long, turning by 35 degrees and more at many vertices) was cut into runs at every
+// turn over 30 degrees, each a near stop: 19.5 s against LinuxCNC's 12.7 s. Such turns between
+// lines short against the tolerance are noise within it, not corners: they join the run, and the
+// curve stays within the tolerance of the programmed lines. A sharp turn next to a line longer than
+// smooth_soft_corner_line_tolerances tolerances stays a corner.
+TEST(LineSmoother, SharpTurnsBetweenLinesShortAgainstTheToleranceJoinTheRun) {
+  const double tol = 0.01, step = 2.5 * tol;  // [mm]
+  std::mt19937 rng(20261204);
+  std::uniform_real_distribution<double> turn(0.6, 0.9);  // [rad]: 34 .. 52 degrees
+  std::bernoulli_distribution left(0.5);
+  std::vector<Vec3> v{Vec3::Zero()};
+  double heading = 0.0;  // [rad]
+  for (int i = 0; i < 80; ++i) {
+    heading += (left(rng) ? 1.0 : -1.0) * turn(rng);
+    v.push_back(v.back() + step * Vec3(std::cos(heading), std::sin(heading), 0.0));
+  }
+  const auto out = smooth(v, tol);
+  ASSERT_EQ(out.size(), v.size() - 1);
+  // Every vertex turns by 34 degrees or more: before, no line was smoothed. Now the lines are
+  // pieces of curves (a fit that cannot follow the walk is halved: its halves' end lines stay
+  // lines), each within the tolerance of the programmed lines.
+  int smoothed = 0;
+  for (std::size_t i = 1; i + 1 < out.size(); ++i) {
+    if (!out[i].lines) continue;
+    ++smoothed;
+    const Curve& c = *out[i].curve;
+    for (int q = 0; q <= 50; ++q) {
+      const double u = c.u_min() + (c.u_max() - c.u_min()) * q / 50.0;
+      EXPECT_LE(distance_to_polyline(v, c.point(u)), tol) << "line " << i + 1 << " u " << u;
+    }
+  }
+  EXPECT_GE(smoothed, 70);
+  // The same walk with one line 5 tolerances long: the turns at its ends stay corners.
+  std::vector<Vec3> w(v.begin(), v.begin() + 31);
+  const Vec3 long_dir = (v[31] - v[30]).normalized();
+  w.push_back(w.back() + 5.0 * tol * long_dir);
+  for (std::size_t i = 31; i + 1 < v.size(); ++i) w.push_back(w.back() + (v[i + 1] - v[i]));
+  const auto cut = smooth(w, tol);
+  ASSERT_EQ(cut.size(), w.size() - 1);
+  EXPECT_FALSE(cut[30].lines.has_value());  // the long line (line 31)
+  EXPECT_FALSE(cut[29].lines.has_value());  // the run before ends with its last line
+  EXPECT_FALSE(cut[31].lines.has_value());  // the run after starts with its first line
+  EXPECT_TRUE(cut[15].lines.has_value());
+  EXPECT_TRUE(cut[45].lines.has_value());
+}
+
 TEST(LineSmoother, NaiveCamToleranceWidensTheSmoothing) {
   const auto v = rounded_arc(5.0, pi / 4, 0.1, 0.001);
   program::LineSmoother s;

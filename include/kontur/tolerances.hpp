@@ -349,6 +349,16 @@ inline constexpr std::size_t plan_chain_max_pieces = 256;
 /// A run of lines is smoothed only where consecutive lines turn by at most 30 degrees (cosine of
 /// the turn at least this): sharper corners keep their corner (blended or a near stop).
 inline constexpr double smooth_max_turn_cos = 0.8660254037844387;
+/// ... unless the lines around the vertex are short against the tolerance (a random walk of lines
+/// 2.5 tolerances long turning by 35 degrees and more at every vertex: noise within the tolerance,
+/// not corners of the part): a turn of up to 90 degrees (cosine at least this) joins the run where
+/// the line before, the line after and the one before that are at most
+/// smooth_soft_corner_line_tolerances tolerances long, and a corner blend trimming the longer of
+/// the two lines whole would stray from them by at most smooth_soft_corner_share of the tolerance.
+/// (Longer lines around a sharp turn are a corner of the part: a curve through it bends over them.)
+inline constexpr double smooth_soft_corner_turn_cos = 0.0;
+inline constexpr double smooth_soft_corner_line_tolerances = 4.0;
+inline constexpr double smooth_soft_corner_share = 0.5;
 /// Lines inside a smoothed run are at most this many times the tolerance long: longer lines stay
 /// straight (they may start or end a run).
 inline constexpr double smooth_max_line_tolerances = 50.0;

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cstring>
 #include <iterator>
+#include <kontur/geometry/corner_blend_curve.hpp>
 #include <kontur/geometry/curve_piece.hpp>
 #include <kontur/geometry/differential.hpp>
 #include <kontur/geometry/length.hpp>
@@ -9,6 +10,7 @@
 #include <kontur/geometry/span_polynomial.hpp>
 #include <kontur/program/line_smoother.hpp>
 #include <kontur/tolerances.hpp>
+#include <limits>
 #include <memory>
 
 namespace kontur::program {
@@ -44,7 +46,15 @@ bool LineSmoother::joins(const Move& move) const {
   if (run_.size() >= 2 && la > tolerances::smooth_max_line_tolerances * tol) return false;
   if ((next->start() - last.end()).norm() > 1e-12 * std::max(1.0, last.end().norm())) return false;
   const Vec3 t1 = (last.end() - last.start()) / la, t2 = (next->end() - next->start()) / lb;
-  return t1.dot(t2) >= tolerances::smooth_max_turn_cos;
+  const double turn_cos = t1.dot(t2);
+  if (turn_cos >= tolerances::smooth_max_turn_cos) return true;
+  // A sharper turn between lines short against the tolerance (the two lines of the vertex and the
+  // one before, in the run or the line the run follows) is no corner of the part: a curve cutting
+  // it along the longer line would stay well within the tolerance.
+  if (turn_cos < tolerances::smooth_soft_corner_turn_cos) return false;
+  const double la_prev = run_.size() >= 2 ? line_length(line_of(run_[run_.size() - 2])) : before_run_mm_;
+  if (std::max({la_prev, la, lb}) > tolerances::smooth_soft_corner_line_tolerances * tol) return false;
+  return unit_blend_deviation(t1, t2) * std::max(la, lb) <= tolerances::smooth_soft_corner_share * tol;
 }
 
 void LineSmoother::push(const Move& move, std::vector<Move>& out) {
@@ -52,7 +62,12 @@ void LineSmoother::push(const Move& move, std::vector<Move>& out) {
     out.push_back(move);
     return;
   }
+  // the line the move follows, if it ends where the move starts [mm] (else infinite)
+  double before_mm = std::numeric_limits<double>::infinity();
   if (!run_.empty()) {
+    const LineSegment& last = line_of(run_.back());
+    if (move.curve && (move.curve->point(move.curve->u_min()) - last.end()).norm() <= 1e-12 * std::max(1.0, last.end().norm()))
+      before_mm = line_length(last);
     if (!joins(move))
       flush(out);
     else if (run_.size() >= tolerances::smooth_max_run_lines &&
@@ -62,6 +77,7 @@ void LineSmoother::push(const Move& move, std::vector<Move>& out) {
   }
   if (const LineSegment* l = feed_line(move)) {
     if (run_.size() >= tolerances::smooth_max_run_lines) beyond_mm_ += line_length(*l);
+    if (run_.empty()) before_run_mm_ = before_mm;
     run_.push_back(move);
   } else {
     out.push_back(move);

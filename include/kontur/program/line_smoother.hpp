@@ -2,7 +2,9 @@
 // Smoothing of dense G01 within the G64 tolerance: a streaming stage over the program's moves,
 // before the corner blender. A run of feed lines (G1) joined without an exact stop, with the same
 // positive tolerance (G64 P, else the machine's path tolerance; G64 Q when it is larger), turning
-// by at most 30 degrees at each vertex and whose inner lines are at most 50 tolerances long, is
+// by at most 30 degrees at each vertex (up to 90 between lines of a few tolerances, where the turn
+// is noise within the tolerance: tolerances::smooth_soft_corner_*) and whose inner lines are at
+// most 50 tolerances long, is
 // replaced by one curvature-continuous curve (geometry/polyline_fit.hpp) within the tolerance of
 // the programmed lines: its first and last line stay lines (the corners around the run are the
 // blender's), each line between them becomes its piece of the curve (a move with the line's
@@ -21,6 +23,7 @@
 // fails, its first line runs from the curve's point (within the tolerance of the programmed line).
 #include <kontur/geometry/span_polynomial.hpp>
 #include <kontur/program/move.hpp>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -70,6 +73,8 @@ class LineSmoother {
   std::vector<Move> run_;
   std::optional<Carry> carry_;  // the run held back continues a cut run's curve
   double beyond_mm_ = 0.0;      // length of the run's lines after its first smooth_max_run_lines [mm]
+  // length of the line the run's first line follows [mm] (infinite: none, or not joined to it)
+  double before_run_mm_ = std::numeric_limits<double>::infinity();
 };
 
 }  // namespace kontur::program
