@@ -65,17 +65,6 @@ double polyline_distance(const std::vector<Vec3>& v, const Vec3& p, long first, 
   return std::sqrt(d2);
 }
 
-double segment_distance_squared(const Vec3& p, const Vec3& a, const Vec3& b) noexcept {
-  const Vec3 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (p - a - t * ab).squaredNorm();
-}
-
-double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) noexcept {
-  return std::sqrt(segment_distance_squared(p, a, b));
-}
-
 }  // namespace kontur
 
 namespace kontur {

@@ -1,6 +1,8 @@
 #pragma once
 // Differential geometry of a curve at a point: unit tangent, curvature, and the chord
 // (bow-height) error of a step, used by the feed planner and the seed 004 interpolator.
+#include <algorithm>
+#include <cmath>
 #include <kontur/geometry/curve.hpp>
 #include <vector>
 
@@ -31,10 +33,18 @@ namespace kontur {
 /// Chord error [mm] of the step from u0 to u1 on a curve, measured as the largest distance of
 /// the curve between u0 and u1 from the chord, sampled at `samples` interior points.
 [[nodiscard]] double chord_error(const Curve& curve, double u0, double u1, int samples = 16) noexcept;
-/// Distance [mm] from the point p to the segment [a, b] (to a when a = b).
-[[nodiscard]] double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) noexcept;
-/// Its square [mm^2] (segment_distance is its square root, bit for bit): for comparisons.
-[[nodiscard]] double segment_distance_squared(const Vec3& p, const Vec3& a, const Vec3& b) noexcept;
+/// Squared distance [mm^2] from the point p to the segment [a, b] (to a when a = b): for
+/// comparisons (inline: the polyline fit's check measures millions of them).
+[[nodiscard]] inline double segment_distance_squared(const Vec3& p, const Vec3& a, const Vec3& b) noexcept {
+  const Vec3 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (p - a - t * ab).squaredNorm();
+}
+/// Distance [mm] from the point p to the segment [a, b]: the root of segment_distance_squared.
+[[nodiscard]] inline double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) noexcept {
+  return std::sqrt(segment_distance_squared(p, a, b));
+}
 /// Distance [mm] from p to the lines first .. last (indices of lines, clamped to the polyline) of
 /// the polyline through `vertices`: line i runs from vertices[i] to vertices[i + 1]. Infinite if
 /// no line is in the range.
