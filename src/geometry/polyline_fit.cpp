@@ -371,13 +371,18 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
     }
     // More weight where the curve strays, and on the spans beside it: on the lines where it strays
     // from them, on the vertices where it passes one too far.
+    // (far beyond the target, as a fit of lines much shorter than its smoothing length starts: the
+    // step squared, which saves the iterations that would only approach it)
+    const double step = worst > tolerances::smooth_fit_far_targets * target
+                            ? tolerances::smooth_fit_weight_step * tolerances::smooth_fit_weight_step
+                            : tolerances::smooth_fit_weight_step;
     for (auto [dev, weights] : {std::pair{&deviation, &factor}, std::pair{&vertex_deviation, &vertex_factor}}) {
       std::fill(raise.begin(), raise.end(), 0);
       for (std::size_t j = 0; j < m; ++j)
         if ((*dev)[j] > target)
           for (std::size_t k = j > 0 ? j - 1 : 0; k <= std::min(m - 1, j + 1); ++k) raise[k] = 1;
       for (std::size_t j = 0; j < m; ++j)
-        if (raise[j] != 0) (*weights)[j] *= tolerances::smooth_fit_weight_step;
+        if (raise[j] != 0) (*weights)[j] *= step;
     }
   }
   return result;
