@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <kontur/geometry/curve_piece.hpp>
 #include <kontur/geometry/differential.hpp>
+#include <kontur/geometry/polyline_fit.hpp>
 #include <kontur/geometry/helix_arc.hpp>
 #include <kontur/geometry/line_segment.hpp>
 #include <kontur/geometry/nurbs.hpp>
@@ -108,6 +109,56 @@ TEST(Differential, StationaryPointsFindsEveryCuspOfAPolynomialCurveOffTheGrid) {
   }
   // and a line has none, with nothing to refine
   EXPECT_TRUE(stationary_points(LineSegment(Vec3(0, 0, 0), Vec3(1, 2, 3)), 1e-6, 64).empty());
+}
+
+// stationary_points skips its grid on a polynomial curve whose |C'| is bounded away from zero on
+// every span (bounds from the derivatives at the spans' middles): seeded near-cusps whose
+// smallest |C'| is a tenth of the relative limit are still found, those at ten times it are not,
+// on the span polynomials and on a piece of them; and a smoothed run's curve has none.
+TEST(Differential, StationaryPointsBoundSkipsOnlyCurvesFarFromAStop) {
+  std::mt19937 rng(20261204);
+  std::uniform_real_distribution<double> place(0.1, 0.9), scale(0.5, 5.0);
+  const double relative = 1e-3;
+  for (int trial = 0; trial < 200; ++trial) {
+    const double t0 = place(rng), sx = scale(rng), sy = scale(rng);
+    for (const double share : {0.1, 10.0}) {
+      // x = sx (t - t0)^3 + e t, y = sy (t - t0)^2: |C'| = e at t0, its smallest; its largest
+      // (at the end farther from t0, w away) about hypot(3 sx w^2, 2 sy w)
+      const double w = std::max(t0, 1.0 - t0);
+      const double e = share * relative * std::hypot(3.0 * sx * w * w, 2.0 * sy * w);
+      const std::array<double, 4> ax{-sx * t0 * t0 * t0, 3.0 * sx * t0 * t0 + e, -3.0 * sx * t0, sx};
+      const std::array<double, 4> ay{sy * t0 * t0, -2.0 * sy * t0, sy, 0.0};
+      const auto bezier = [](const std::array<double, 4>& a) {
+        return std::array<double, 4>{a[0], a[0] + a[1] / 3.0, a[0] + 2.0 * a[1] / 3.0 + a[2] / 3.0,
+                                     a[0] + a[1] + a[2] + a[3]};
+      };
+      const auto bx = bezier(ax), by = bezier(ay);
+      const NurbsCurve one(NurbsData{3, {0, 0, 0, 0, 1, 1, 1, 1},
+                                     {Vec3(bx[0], by[0], 0), Vec3(bx[1], by[1], 0), Vec3(bx[2], by[2], 0),
+                                      Vec3(bx[3], by[3], 0)},
+                                     {}});
+      const auto spans = std::make_shared<SpanPolynomialCurve>(one);
+      const std::vector<double> at = stationary_points(*spans, relative, 64);
+      const CurvePiece piece(spans, 0.5 * t0, 0.5 * (1.0 + t0));
+      const std::vector<double> in_piece = stationary_points(piece, relative, 64);
+      if (share < 1.0) {
+        EXPECT_EQ(at.size(), 1u) << "t0 = " << t0;
+        EXPECT_EQ(in_piece.size(), 1u) << "t0 = " << t0;
+      } else {
+        EXPECT_TRUE(at.empty()) << "t0 = " << t0;
+        EXPECT_TRUE(in_piece.empty()) << "t0 = " << t0;
+      }
+    }
+  }
+  // a quarter circle of 200 lines smoothed: its curve and every piece of it have none
+  std::vector<Vec3> v;
+  for (int i = 0; i <= 200; ++i) v.emplace_back(5.0 * std::sin(0.5 * std::numbers::pi * i / 200), 5.0 * std::cos(0.5 * std::numbers::pi * i / 200), 0.0);
+  const std::optional<PolylineFit> fit = fit_polyline(v, Vec3(1, 0, 0), Vec3(0, -1, 0), 0.01);
+  ASSERT_TRUE(fit.has_value());
+  const auto curve = std::make_shared<SpanPolynomialCurve>(fit->curve);
+  EXPECT_TRUE(stationary_points(*curve, 1e-6, 64).empty());
+  for (std::size_t i = 0; i + 1 < fit->vertex_u.size(); ++i)
+    EXPECT_TRUE(stationary_points(CurvePiece(curve, fit->vertex_u[i], fit->vertex_u[i + 1]), 1e-6, 64).empty()) << i;
 }
 
 }  // namespace
