@@ -31,6 +31,11 @@ const LineSegment& line_of(const Move& m) { return static_cast<const LineSegment
 
 double line_length(const LineSegment& l) { return (l.end() - l.start()).norm(); }
 
+// `next` starts where `last` ends (to rounding).
+bool continues(const LineSegment& last, const LineSegment& next) {
+  return (next.start() - last.end()).norm() <= 1e-12 * std::max(1.0, last.end().norm());
+}
+
 }  // namespace
 
 bool LineSmoother::joins(const Move& move) const {
@@ -44,7 +49,7 @@ bool LineSmoother::joins(const Move& move) const {
   if (la < tolerances::blend_min_line_mm || lb < tolerances::blend_min_line_mm) return false;
   // the line before becomes an inner line of the run (the first line may be of any length)
   if (run_.size() >= 2 && la > tolerances::smooth_max_line_tolerances * tol) return false;
-  if ((next->start() - last.end()).norm() > 1e-12 * std::max(1.0, last.end().norm())) return false;
+  if (!continues(last, *next)) return false;
   const Vec3 t1 = (last.end() - last.start()) / la, t2 = (next->end() - next->start()) / lb;
   const double turn_cos = t1.dot(t2);
   if (turn_cos >= tolerances::smooth_max_turn_cos) return true;
@@ -62,12 +67,13 @@ void LineSmoother::push(const Move& move, std::vector<Move>& out) {
     out.push_back(move);
     return;
   }
-  // the line the move follows, if it ends where the move starts [mm] (else infinite)
+  const LineSegment* line = feed_line(move);
+  // the line the move follows, if it is a line that continues it [mm] (else infinite): kept as
+  // before_run_mm_ if the move starts a run
   double before_mm = std::numeric_limits<double>::infinity();
   if (!run_.empty()) {
     const LineSegment& last = line_of(run_.back());
-    if (move.curve && (move.curve->point(move.curve->u_min()) - last.end()).norm() <= 1e-12 * std::max(1.0, last.end().norm()))
-      before_mm = line_length(last);
+    if (line != nullptr && continues(last, *line)) before_mm = line_length(last);
     if (!joins(move))
       flush(out);
     else if (run_.size() >= tolerances::smooth_max_run_lines &&
@@ -75,8 +81,8 @@ void LineSmoother::push(const Move& move, std::vector<Move>& out) {
               run_.size() >= tolerances::smooth_max_run_lines + tolerances::smooth_run_overlap_max_lines))
       cut(out);
   }
-  if (const LineSegment* l = feed_line(move)) {
-    if (run_.size() >= tolerances::smooth_max_run_lines) beyond_mm_ += line_length(*l);
+  if (line != nullptr) {
+    if (run_.size() >= tolerances::smooth_max_run_lines) beyond_mm_ += line_length(*line);
     if (run_.empty()) before_run_mm_ = before_mm;
     run_.push_back(move);
   } else {
