@@ -99,10 +99,11 @@ std::vector<double> stationary_points(const Curve& curve, double relative, int s
       const double h = 0.5 * (bp[s + 1] - bp[s]);
       const Derivatives d = curve.derivatives(bp[s] + h, 3);
       const double b = d[2].norm() + d[3].norm() * h, speed = d[1].norm();
-      lowest = std::min(lowest, speed - b * h);
+      // (a bound that is not a number proves nothing: the grid decides)
+      lowest = speed - b * h > 0.0 ? std::min(lowest, speed - b * h) : 0.0;
       highest = std::max(highest, speed + b * h);
     }
-    if (std::isfinite(highest) && lowest > 0.0 && lowest > relative * highest) return out;
+    if (lowest > 0.0 && std::isfinite(highest) && lowest > relative * highest) return out;
   }
   const std::size_t n = static_cast<std::size_t>(samples) + 1;
   std::vector<double> us(n * (bp.size() - 1)), f(us.size());
