@@ -77,6 +77,20 @@ TEST(Differential, NonRegularPointGivesZeroNotNaN) {
   EXPECT_EQ(unit_tangent(d), Vec3::Zero());
 }
 
+// The plane cubic x = sum ax_i t^i, y = sum ay_i t^i on [0, 1] (monomial coefficients) as span
+// polynomials (its Bezier points from the monomials).
+std::shared_ptr<SpanPolynomialCurve> plane_cubic(const std::array<double, 4>& ax, const std::array<double, 4>& ay) {
+  const auto bezier = [](const std::array<double, 4>& a) {
+    return std::array<double, 4>{a[0], a[0] + a[1] / 3.0, a[0] + 2.0 * a[1] / 3.0 + a[2] / 3.0, a[0] + a[1] + a[2] + a[3]};
+  };
+  const auto bx = bezier(ax), by = bezier(ay);
+  NurbsData d;
+  d.degree = 3;
+  d.knots = {0, 0, 0, 0, 1, 1, 1, 1};
+  for (std::size_t i = 0; i < 4; ++i) d.points.emplace_back(bx[i], by[i], 0.0);
+  return std::make_shared<SpanPolynomialCurve>(NurbsCurve(d));
+}
+
 // stationary_points skips the refinement of a grid minimum of |C'|^2 that Markov's inequality
 // shows to be far from zero, on a polynomial curve only: every cusp off the grid is still found,
 // on the span polynomials of a cubic and on a piece of them (seeded cusp places t0).
@@ -85,19 +99,9 @@ TEST(Differential, StationaryPointsFindsEveryCuspOfAPolynomialCurveOffTheGrid) {
   std::uniform_real_distribution<double> place(0.02, 0.98), scale(0.1, 100.0);
   for (int trial = 0; trial < 300; ++trial) {
     const double t0 = place(rng), sx = scale(rng), sy = scale(rng);
-    // x = sx (t - t0)^3, y = sy (t - t0)^2: |C'| = 0 at t0 only; Bezier points from the monomials
-    const std::array<double, 4> ax{-sx * t0 * t0 * t0, 3.0 * sx * t0 * t0, -3.0 * sx * t0, sx};
-    const std::array<double, 4> ay{sy * t0 * t0, -2.0 * sy * t0, sy, 0.0};
-    const auto bezier = [](const std::array<double, 4>& a) {
-      return std::array<double, 4>{a[0], a[0] + a[1] / 3.0, a[0] + 2.0 * a[1] / 3.0 + a[2] / 3.0,
-                                   a[0] + a[1] + a[2] + a[3]};
-    };
-    const auto bx = bezier(ax), by = bezier(ay);
-    NurbsData d;
-    d.degree = 3;
-    d.knots = {0, 0, 0, 0, 1, 1, 1, 1};
-    for (int i = 0; i < 4; ++i) d.points.emplace_back(bx[static_cast<std::size_t>(i)], by[static_cast<std::size_t>(i)], 0.0);
-    const auto spans = std::make_shared<SpanPolynomialCurve>(NurbsCurve(d));
+    // x = sx (t - t0)^3, y = sy (t - t0)^2: |C'| = 0 at t0 only
+    const auto spans = plane_cubic({-sx * t0 * t0 * t0, 3.0 * sx * t0 * t0, -3.0 * sx * t0, sx},
+                                   {sy * t0 * t0, -2.0 * sy * t0, sy, 0.0});
     ASSERT_EQ(spans->polynomial_degree(), 3);
     const std::vector<double> at = stationary_points(*spans, 1e-6, 64);
     ASSERT_EQ(at.size(), 1u) << "t0 = " << t0;
@@ -126,18 +130,8 @@ TEST(Differential, StationaryPointsBoundSkipsOnlyCurvesFarFromAStop) {
       // (at the end farther from t0, w away) about hypot(3 sx w^2, 2 sy w)
       const double w = std::max(t0, 1.0 - t0);
       const double e = share * relative * std::hypot(3.0 * sx * w * w, 2.0 * sy * w);
-      const std::array<double, 4> ax{-sx * t0 * t0 * t0, 3.0 * sx * t0 * t0 + e, -3.0 * sx * t0, sx};
-      const std::array<double, 4> ay{sy * t0 * t0, -2.0 * sy * t0, sy, 0.0};
-      const auto bezier = [](const std::array<double, 4>& a) {
-        return std::array<double, 4>{a[0], a[0] + a[1] / 3.0, a[0] + 2.0 * a[1] / 3.0 + a[2] / 3.0,
-                                     a[0] + a[1] + a[2] + a[3]};
-      };
-      const auto bx = bezier(ax), by = bezier(ay);
-      const NurbsCurve one(NurbsData{3, {0, 0, 0, 0, 1, 1, 1, 1},
-                                     {Vec3(bx[0], by[0], 0), Vec3(bx[1], by[1], 0), Vec3(bx[2], by[2], 0),
-                                      Vec3(bx[3], by[3], 0)},
-                                     {}});
-      const auto spans = std::make_shared<SpanPolynomialCurve>(one);
+      const auto spans = plane_cubic({-sx * t0 * t0 * t0, 3.0 * sx * t0 * t0 + e, -3.0 * sx * t0, sx},
+                                     {sy * t0 * t0, -2.0 * sy * t0, sy, 0.0});
       const std::vector<double> at = stationary_points(*spans, relative, 64);
       const CurvePiece piece(spans, 0.5 * t0, 0.5 * (1.0 + t0));
       const std::vector<double> in_piece = stationary_points(piece, relative, 64);
