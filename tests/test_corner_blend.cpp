@@ -5,7 +5,12 @@
 
 #include <cmath>
 #include <deque>
+#include <limits>
+#include <kontur/geometry/curve_piece.hpp>
+#include <kontur/geometry/golden_section.hpp>
+#include <kontur/geometry/helix_arc.hpp>
 #include <kontur/geometry/line_segment.hpp>
+#include <kontur/geometry/transition_curve.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/plan/constraints.hpp>
 #include <kontur/plan/motion_planner.hpp>
@@ -208,6 +213,226 @@ TEST(CornerBlend, CheckerRejectsABlendBeyondItsTolerance) {
   const verify::Report r = verify::check(testing::plan_and_sample(machine, moves), moves, machine);
   EXPECT_FALSE(r.passed(machine));
   EXPECT_GT(r.max_blend_deviation_ratio, 4.0);
+}
+
+// ---- junctions with arcs (a TransitionCurve between the trimmed moves)
+
+// A chain of lines and arcs in space from the origin: each piece starts where the last ended,
+// tangent to it or turned by up to 60 degrees; arcs of radius 0.5-20 mm in a random plane through
+// the direction, sweeping 0.2-2.5 rad. The tolerance `tol_mm` at every junction.
+std::vector<program::Move> line_arc_chain(std::mt19937_64& rng, int pieces, double tol_mm, double feed_mm_s = 100.0) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Vec3 p = Vec3::Zero(), t = Vec3::UnitX();
+  std::vector<program::Move> moves;
+  for (int i = 0; i < pieces; ++i) {
+    if (unit(rng) < 0.5) {  // a corner: t turned about a random normal
+      const Vec3 axis = t.cross(random_unit(rng)).normalized();
+      t = Eigen::AngleAxisd(unit(rng) * M_PI / 3.0, axis) * t;
+    }
+    std::shared_ptr<const Curve> c;
+    if (unit(rng) < 0.4) {
+      c = std::make_shared<const LineSegment>(p, p + (0.5 + 5.0 * unit(rng)) * t);
+    } else {
+      const Vec3 n = t.cross(random_unit(rng)).normalized();
+      const double r = 0.5 + 19.5 * unit(rng);
+      CircleFrame f;
+      f.normal = n;
+      f.e1 = t.cross(n);  // e2 = n x e1 = t: the arc starts along t
+      f.e2 = n.cross(f.e1);
+      f.centre = p - r * f.e1;
+      c = std::make_shared<const HelixArc>(f, r, 0.2 + 2.3 * unit(rng));
+    }
+    program::Move m = program::move_along(c, feed_mm_s, false, i + 1);
+    m.corner_tolerance_mm = tol_mm;
+    const Derivatives e = c->derivatives(c->u_max(), 1);
+    p = e[0];
+    t = e[1].normalized();
+    moves.push_back(std::move(m));
+  }
+  return moves;
+}
+
+std::vector<program::Move> blend_moves(const std::vector<program::Move>& moves, const Machine* machine = nullptr) {
+  program::CornerBlender blender =
+      machine ? program::CornerBlender(
+                    true, machine,
+                    [machine](const Curve& c, double feed_mm_s) { return plan::curve_speed_cap(c, feed_mm_s, *machine); },
+                    [machine](const Derivatives& a, const Derivatives& b) { return plan::junction(a, b, *machine).velocity; })
+              : program::CornerBlender(true);
+  std::vector<program::Move> out;
+  for (const program::Move& m : moves) blender.push(m, out);
+  blender.flush(out);
+  return out;
+}
+
+TEST(CornerBlend, JunctionsWithArcsBlendCurvatureContinuousWithinTheTolerance) {
+  std::mt19937_64 rng(20261204);
+  std::uniform_real_distribution<double> tol(1e-3, 0.1);
+  int blends = 0, at_tolerance = 0, tangent = 0;
+  for (int chain = 0; chain < 60; ++chain) {
+    const double delta = tol(rng);
+    const std::vector<program::Move> moves = line_arc_chain(rng, 12, delta);
+    const std::vector<program::Move> out = blend_moves(moves);
+    // The path runs from the first programmed point to the last without a gap.
+    EXPECT_LT((out.front().curve->point(out.front().curve->u_min()) - Vec3::Zero()).norm(), 1e-12);
+    const Curve& last = *moves.back().curve;
+    EXPECT_LT((out.back().curve->point(out.back().curve->u_max()) - last.point(last.u_max())).norm(), 1e-12);
+    for (std::size_t i = 0; i + 1 < out.size(); ++i) {
+      const Curve &a = *out[i].curve, &b = *out[i + 1].curve;
+      EXPECT_LT((a.point(a.u_max()) - b.point(b.u_min())).norm(), 1e-9) << "chain " << chain << " move " << i;
+      EXPECT_GT(out[i].length_mm, 0.0);
+    }
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      if (!out[i].corner) continue;
+      const double dev = verify::blend_deviation(*out[i].curve, *out[i].corner);
+      EXPECT_LE(dev, delta * (1 + 1e-9)) << "chain " << chain << " move " << i;
+      if (!out[i].corner->before_curve) continue;  // two lines: CornerBlend tests above
+      ++blends;
+      if (dev >= 0.5 * delta) ++at_tolerance;
+      // Tangent and curvature-continuous with the trimmed moves on both sides.
+      ASSERT_TRUE(i > 0 && i + 1 < out.size());
+      const Curve &before = *out[i - 1].curve, &blend = *out[i].curve, &after = *out[i + 1].curve;
+      for (const auto& [x, y] : {std::pair{curve_end(before, before.u_max(), true), curve_end(blend, 0.0, false)},
+                                 std::pair{curve_end(blend, 1.0, true), curve_end(after, after.u_min(), false)}}) {
+        EXPECT_LT((x.point - y.point).norm(), 1e-9);
+        EXPECT_LT((x.tangent - y.tangent).norm(), 1e-9);
+        EXPECT_LT((x.curvature - y.curvature).norm(), 1e-7 * std::max(1.0, x.curvature.norm()));
+      }
+      const Curve& programmed_in = *out[i].corner->before_curve;
+      if ((curve_end(programmed_in, programmed_in.u_max(), true).tangent -
+           curve_end(*out[i].corner->after_curve, 0.0, false).tangent)
+              .norm() < 1e-9)
+        ++tangent;
+    }
+  }
+  EXPECT_GT(blends, 300);
+  EXPECT_GT(tangent, 50);         // tangent junctions with a jump of curvature are blended too
+  EXPECT_GT(at_tolerance, 100);  // where the moves are long enough, the blend uses its tolerance
+}
+
+TEST(CornerBlend, ArcBlendsPassTheCheckAndRunFasterThanTheirJunctions) {
+  // Lines of 30 mm joined by half circles of radius 3 mm (tangent: only the curvature jumps, by
+  // 1/3 per mm), and the same with every piece turned by 20 degrees against the last.
+  Machine machine = default_machine();
+  machine.path_tolerance_mm = 0.02;
+  for (const double kink_deg : {0.0, 20.0}) {
+    std::vector<program::Move> moves;
+    Vec3 p = Vec3::Zero(), t = Vec3::UnitX();
+    for (int i = 0; i < 8; ++i) {
+      t = Eigen::AngleAxisd(kink_deg * M_PI / 180.0, Vec3::UnitZ()) * t;
+      std::shared_ptr<const Curve> c;
+      if (i % 2 == 0) {
+        c = std::make_shared<const LineSegment>(p, p + 30.0 * t);
+      } else {
+        CircleFrame f;
+        f.normal = Vec3::UnitZ();
+        f.e1 = t.cross(f.normal);
+        f.e2 = f.normal.cross(f.e1);
+        f.centre = p - 3.0 * f.e1;
+        c = std::make_shared<const HelixArc>(f, 3.0, M_PI);
+      }
+      program::Move m = program::move_along(c, 150.0, false, i + 1);
+      m.corner_tolerance_mm = machine.path_tolerance_mm;
+      p = c->point(c->u_max());
+      t = c->derivatives(c->u_max(), 1)[1].normalized();
+      moves.push_back(std::move(m));
+    }
+    std::vector<program::Move> blended = blend_moves(moves, &machine);
+    const auto run = [&](std::vector<program::Move>& ms) {
+      const std::vector<verify::Sample> samples = testing::plan_and_sample(machine, ms);
+      for (std::size_t i = 0; i < ms.size(); ++i) ms[i].id = static_cast<program::MoveId>(i);
+      return RunResult{verify::check(samples, ms, machine), samples.back().t_s};
+    };
+    const RunResult sharp = run(moves), smooth = run(blended);
+    for (const auto* r : {&sharp, &smooth}) {
+      std::string failures;
+      for (const auto& f : r->report.failures(machine)) failures += "\n  " + f;
+      EXPECT_TRUE(r->report.passed(machine)) << kink_deg << " degrees" << failures;
+    }
+    EXPECT_EQ(smooth.report.blends, 7) << kink_deg << " degrees";
+    EXPECT_LE(smooth.report.max_blend_deviation_mm, machine.path_tolerance_mm);
+    // (a tangent junction loses only its jump of curvature: much faster; a corner of 20 degrees
+    // blended within 0.02 mm is still a slow turn, a little faster than the near stop)
+    EXPECT_LT(smooth.time_s, (kink_deg == 0.0 ? 0.9 : 0.99) * sharp.time_s) << kink_deg << " degrees " << sharp.time_s;
+  }
+}
+
+TEST(CornerBlend, CheckerMeasuresAnArcBlendAgainstTheProgrammedArc) {
+  // A line into a tangent quarter circle of radius 2 mm, blended with 0.01 mm: the checker's
+  // deviation equals the largest distance by brute force (401 points of the blend, 20,001 of each programmed piece),
+  // and the same blend judged against the arc moved by 0.03 mm is beyond its tolerance.
+  CircleFrame f;
+  f.e1 = -Vec3::UnitY();
+  f.e2 = Vec3::UnitX();
+  f.normal = Vec3::UnitZ();
+  f.centre = Vec3(10.0, 2.0, 0.0);
+  const auto line = std::make_shared<const LineSegment>(Vec3::Zero(), Vec3(10.0, 0.0, 0.0));
+  const auto arc = std::make_shared<const HelixArc>(f, 2.0, M_PI / 2.0);
+  std::vector<program::Move> moves = {program::move_along(line, 100.0, false, 1), program::move_along(arc, 100.0, false, 2)};
+  for (auto& m : moves) m.corner_tolerance_mm = 0.01;
+  const auto out = blend_moves(moves);
+  ASSERT_EQ(out.size(), 3U);
+  ASSERT_TRUE(out[1].corner);
+  const program::ProgrammedCorner& pc = *out[1].corner;
+  const double dev = verify::blend_deviation(*out[1].curve, pc);
+  double brute = 0.0;
+  for (int k = 0; k <= 400; ++k) {
+    const Vec3 q = out[1].curve->point(k / 400.0);
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Curve* piece : {pc.before_curve.get(), pc.after_curve.get()})
+      for (int j = 0; j <= 20000; ++j) {
+        const double u = piece->u_min() + (piece->u_max() - piece->u_min()) * j / 20000.0;
+        nearest = std::min(nearest, (piece->point(u) - q).norm());
+      }
+    brute = std::max(brute, nearest);
+  }
+  EXPECT_NEAR(dev, brute, 1e-6);
+  EXPECT_GT(dev, 0.005);
+  EXPECT_LE(dev, 0.01);
+  program::ProgrammedCorner moved = pc;
+  CircleFrame g = f;
+  g.centre += Vec3(0.0, 0.03, 0.0);
+  moved.after_curve = std::make_shared<const CurvePiece>(std::make_shared<const HelixArc>(g, 2.0, M_PI / 2.0), 0.0,
+                                                         pc.after_curve->u_max());
+  moved.before_curve = std::make_shared<const LineSegment>(pc.before + Vec3(0.0, 0.03, 0.0), pc.corner + Vec3(0.0, 0.03, 0.0));
+  EXPECT_GT(verify::blend_deviation(*out[1].curve, moved), 0.015);
+}
+
+TEST(HelixArcDistance, EqualsTheNearestOfDenseSamplesOnCirclesHelicesAndSpirals) {
+  // Seeded arcs (a third circles, a third helices, a third with a change of radius), a random part
+  // [u0, u1] of each, points within 1 mm of the part and beyond its ends: distance_mm equals the
+  // nearest point found by dense sampling and a golden-section search, to 1e-9 mm on circles (where
+  // it is exact) and 1e-7 mm on the others.
+  std::mt19937_64 rng(412);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int i = 0; i < 60; ++i) {
+    CircleFrame f;
+    f.normal = random_unit(rng);
+    f.e1 = f.normal.cross(random_unit(rng)).normalized();
+    f.e2 = f.normal.cross(f.e1);
+    f.centre = 50.0 * random_unit(rng);
+    const double r = 0.5 + 20.0 * unit(rng);
+    const int kind = i % 3;
+    // (helices of up to 2.5 turns)
+    const HelixArc arc(f, r, 0.2 + (kind == 1 ? 15.0 : 6.0) * unit(rng), kind == 1 ? 20.0 * (unit(rng) - 0.5) : 0.0,
+                       kind == 2 ? 0.2 * r * (unit(rng) - 0.5) : 0.0);
+    const double u0 = 0.5 * unit(rng), u1 = u0 + (1.0 - u0) * (0.05 + 0.95 * unit(rng));
+    for (int k = 0; k < 20; ++k) {
+      const double u = u0 + (u1 - u0) * (1.4 * unit(rng) - 0.2);
+      const Vec3 p = arc.point(std::clamp(u, 0.0, 1.0)) + unit(rng) * random_unit(rng);
+      // the nearest of 20,001 points, refined by a golden-section search between its neighbours
+      const auto dist = [&](double v) { return (arc.point(v) - p).norm(); };
+      const double h = (u1 - u0) / 20000.0;
+      int best_j = 0;
+      for (int j = 1; j <= 20000; ++j)
+        if (dist(u0 + h * j) < dist(u0 + h * best_j)) best_j = j;
+      const double brute = std::min(
+          dist(u0 + h * best_j),
+          golden_section_minimum(dist, std::max(u0, u0 + h * (best_j - 1)), std::min(u1, u0 + h * (best_j + 1)), 200).second);
+      EXPECT_NEAR(arc.distance_mm(p, u0, u1), brute, kind == 0 ? 1e-9 + 1e-8 * r : 1e-7 + 1e-8 * r)
+          << "arc " << i << " point " << k;
+    }
+  }
 }
 
 }  // namespace

@@ -267,7 +267,7 @@ void register_run_command(CLI::App& app, int& exit_code) {
                 "add the time-optimal reference (acceleration-limited) and the ratio of the total time to it");
   cmd->add_flag("--quiet", o->quiet, "no progress bar and no short summary (errors are still printed)");
   cmd->add_flag("--no-blend", o->no_blend,
-                "do not blend corners between lines within the G64 tolerance (each corner is a junction)");
+                "do not blend corners between lines and arcs within the G64 tolerance (each corner is a junction)");
   cmd->add_flag("--no-smooth", o->no_smooth,
                 "do not smooth runs of dense lines within the G64 tolerance (each line runs as programmed)");
   add_program_read_options(cmd, o->read);

@@ -444,6 +444,18 @@ inline constexpr double blend_min_turn_cos = -0.5;
 /// Largest share of each line a blend may trim: a line between two blended corners keeps at least
 /// 10 % of its length as a straight middle.
 inline constexpr double blend_max_trim_share = 0.45;
+/// Where an arc meets a move, the two count as meeting where their ends lie at most this apart,
+/// relative to the larger of 1 mm and the distance of the corner from the origin (an arc's end is
+/// computed from its centre and angle).
+inline constexpr double blend_arc_contiguous_relative = 1e-9;
+/// Trim distances tried at a junction with an arc before it is left unblended (each tried one is
+/// shrunk by the ratio of the tolerance to its deviation).
+inline constexpr int blend_arc_attempts = 12;
+/// Samples of a blend of a junction with an arc (plus a golden-section search around the largest)
+/// when the blender measures its largest distance from the programmed pieces to size it
+/// (geometry/transition_curve.hpp; its distance varies slowly: the peak between samples is within
+/// a few 1e-4 of it, inside the 1 - blend_tolerance_share the blender leaves).
+inline constexpr int blend_arc_deviation_samples = 64;
 /// Share of the tolerance a blend is made to use (the rest covers the sampling of its deviation).
 inline constexpr double blend_tolerance_share = 0.999;
 /// Samples of a blend (plus a golden-section search around the largest) when the blender measures

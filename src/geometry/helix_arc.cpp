@@ -1,4 +1,5 @@
 #include <kontur/error.hpp>
+#include <kontur/geometry/curve_piece.hpp>
 #include <kontur/geometry/helix_arc.hpp>
 #include <kontur/geometry/length.hpp>
 
@@ -7,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace kontur {
 
@@ -49,5 +51,58 @@ double HelixArc::length_mm() const noexcept {
 }
 
 Vec3 HelixArc::point_at_angle(double phi_rad) const noexcept { return point(phi_rad / sweep_); }
+
+double HelixArc::distance_mm(const Vec3& p, double u0, double u1) const noexcept {
+  u0 = std::clamp(u0, 0.0, 1.0);
+  u1 = std::clamp(u1, u0, 1.0);
+  const Vec3 q = p - frame_.centre;
+  const double x = q.dot(frame_.e1), y = q.dot(frame_.e2);
+  const double a0 = sweep_ * u0, a1 = sweep_ * u1;
+  const double two_pi = 2.0 * std::acos(-1.0);
+  // p's angle counted from the part's start, in [0, 2 pi)
+  double from_start = std::fmod(std::atan2(y, x) - a0, two_pi);
+  if (from_start < 0.0) from_start += two_pi;
+  const bool within = from_start <= a1 - a0 || a1 - a0 >= two_pi;
+  if (rise_ == 0.0 && radius_change_ == 0.0) {
+    // (the distance to the circle's points grows with the angle from p's on either side)
+    if (within) return std::hypot(std::hypot(x, y) - radius_, q.dot(frame_.normal));
+    return std::min((point(u0) - p).norm(), (point(u1) - p).norm());
+  }
+  // On a spiral, from the parameter of p's angle, or the end nearer in angle; on a helix (a part
+  // may wind more than once), from the nearest of 8 points a turn.
+  double u = within ? std::min(u0 + from_start / sweep_, u1) : (from_start - (a1 - a0) < two_pi - from_start ? u1 : u0);
+  if (rise_ != 0.0) {
+    const int n = 8 * std::max(1, static_cast<int>(std::ceil((a1 - a0) / two_pi)));
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int k = 0; k <= n; ++k) {
+      const double v = k == n ? u1 : u0 + (u1 - u0) * k / n;
+      const double dk = (point(v) - p).squaredNorm();
+      if (dk < nearest) {
+        nearest = dk;
+        u = v;
+      }
+    }
+  }
+  double best_mm = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 8; ++i) {
+    const Derivatives d = derivatives(u, 2);
+    const Vec3 r = d[0] - p;
+    best_mm = std::min(best_mm, r.norm());
+    const double f = r.dot(d[1]), fp = d[1].squaredNorm() + r.dot(d[2]);
+    if (!(fp > 0.0)) break;
+    const double next = std::clamp(u - f / fp, u0, u1);
+    // (a step of less than 1e-13 mm along the arc: the foot)
+    if (std::abs(next - u) * d[1].norm() <= 1e-13) break;
+    u = next;
+  }
+  return best_mm;
+}
+
+ArcSpan arc_span(const Curve& curve) noexcept {
+  if (const auto* arc = dynamic_cast<const HelixArc*>(&curve)) return {arc, 0.0, 1.0};
+  if (const auto* piece = dynamic_cast<const CurvePiece*>(&curve))
+    if (const auto* arc = dynamic_cast<const HelixArc*>(piece->whole().get())) return {arc, piece->u_min(), piece->u_max()};
+  return {};
+}
 
 }  // namespace kontur

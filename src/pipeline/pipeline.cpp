@@ -34,9 +34,12 @@ double time_optimal_time(const std::vector<program::Move>& moves, const Machine&
 Pipeline::Pipeline(Machine machine, PipelineOptions options)
     : machine_(std::move(machine)),
       options_(options),
-      path_(machine_, options.blend, options.smooth, [this](const Curve& blend, double feed_mm_s) {
-        return plan::curve_speed_cap(blend, feed_mm_s, machine_);
-      }) {}
+      path_(
+          machine_, options.blend, options.smooth,
+          [this](const Curve& blend, double feed_mm_s) { return plan::curve_speed_cap(blend, feed_mm_s, machine_); },
+          [this](const Derivatives& end_in, const Derivatives& start_out) {
+            return plan::junction(end_in, start_out, machine_).velocity;  // (infinite where smooth)
+          }) {}
 
 gcode::ReaderOptions program_reader_options(const std::string& program, const ProgramReading& reading,
                                             const Machine* machine) {

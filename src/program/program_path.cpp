@@ -4,13 +4,14 @@
 
 namespace kontur::program {
 
-ProgramPath::ProgramPath(const Machine& machine, bool blend, bool smooth, BlendSpeed speed)
+ProgramPath::ProgramPath(const Machine& machine, bool blend, bool smooth, BlendSpeed speed, JunctionSpeed junction)
     : machine_(machine),
       blend_(blend),
       smooth_(smooth),
       speed_(std::move(speed)),
+      junction_(std::move(junction)),
       smoother_(smooth),
-      blender_(blend, &machine, speed_) {}
+      blender_(blend, &machine, speed_, junction_) {}
 
 void ProgramPath::take(std::vector<Move>& ready, const PathHandlers& handlers) {
   for (Move& m : ready) {
@@ -28,7 +29,7 @@ void ProgramPath::read(const std::string& program, const PathHandlers& handlers,
 void ProgramPath::read(const gcode::ValidatedProgram& program, const PathHandlers& handlers) {
   moves_.clear();
   smoother_ = LineSmoother(smooth_);
-  blender_ = CornerBlender(blend_, &machine_, speed_);
+  blender_ = CornerBlender(blend_, &machine_, speed_, junction_);
   std::vector<Move> ready;
   // The smoother's output goes through the blender, in order.
   auto blend = [&] {

@@ -116,8 +116,9 @@ for (const [name, args, plots2d] of reports) {
         assert.ok(z.rect, `block span not shaded: ${JSON.stringify(zoom)}`);
         assert.ok(z.range[1] - z.range[0] < 5, `not zoomed to the block: ${JSON.stringify(z.range)}`);
       }
-      // The block table has a row per move of the program (8).
-      assert.equal(await page.locator("#tables table.data tr.link").count(), 8);
+      // The block table has a row per move of the path: the program's 8 and the 2 blends where
+      // the tangent arc meets its lines.
+      assert.equal(await page.locator("#tables table.data tr.link").count(), 10);
     }
     assert.equal(marks.scene, 1, "the selected point is not marked in the 3-D view");
     assert.deepEqual(errors, [], "console errors");

@@ -6,6 +6,11 @@
 // zero curvature at both ends. d is the largest distance for which the blend stays within the
 // tolerance of the two programmed lines, and at most 45 % of each line's length (a line between
 // two blended corners keeps a straight middle).
+// Where an arc (G2 / G3) meets a line or another arc at a corner, or tangent but with a jump of
+// curvature (a line running into an arc: the acceleration would jump by v^2 / R), both moves are
+// trimmed by the arc length d and a TransitionCurve (geometry/transition_curve.hpp) joins them,
+// tangent and curvature-continuous with both; d is found by shrinking it from 45 % of each move
+// until the blend is within the tolerance of the programmed pieces it replaces.
 #include <functional>
 #include <kontur/geometry/corner_blend_curve.hpp>
 #include <kontur/machine.hpp>
@@ -18,8 +23,11 @@ namespace kontur::program {
 /// The speed [mm/s] a blend curve can be run at on the machine with a programmed feed [mm/s]:
 /// what planning will allow (the pipeline gives plan::speed_cap; the program stage does not plan).
 using BlendSpeed = std::function<double(const Curve& blend, double feed_mm_s)>;
+/// The speed [mm/s] planning allows at a junction left as it is, from the incoming move's end and
+/// the outgoing move's start (the pipeline gives plan::junction's velocity; 0 for a stop).
+using JunctionSpeed = std::function<double(const Derivatives& end_in, const Derivatives& start_out)>;
 
-/// The streaming blender: holds back one line move until the next move is known.
+/// The streaming blender: holds back one line or arc move until the next move is known.
 class CornerBlender {
  public:
   /// `enabled` false: every move is handed on as given (`kontur run --no-blend`). With a machine
@@ -27,25 +35,34 @@ class CornerBlender {
   /// faster: the blend of length ~2d at that speed against stopping at the corner and starting
   /// again within d on each side at the smallest axis jerk (tiny blends on very short lines bend
   /// so sharply that the jerk of the curvature change makes them slower than the stop).
-  explicit CornerBlender(bool enabled = true, const Machine* machine = nullptr, BlendSpeed speed = {})
-      : enabled_(enabled), machine_(machine), speed_(std::move(speed)) {}
+  /// A junction with an arc is blended where the blend is estimated to be faster than passing the
+  /// junction at `junction`'s speed (a stop where it is not given).
+  explicit CornerBlender(bool enabled = true, const Machine* machine = nullptr, BlendSpeed speed = {},
+                         JunctionSpeed junction = {})
+      : enabled_(enabled), machine_(machine), speed_(std::move(speed)), junction_(std::move(junction)) {}
   /// The next move of the program (its corner_tolerance_mm is the tolerance of the corner at its
   /// end; 0 = no blend). The moves that are ready are appended to `out`, in order: trimmed lines
-  /// (their length recomputed) and blends (type "blend", with the programmed corner, the source
-  /// line and feed of the outgoing move).
+  /// (their length recomputed), trimmed arcs (their pieces, CurvePiece) and blends (type "blend",
+  /// with the programmed corner, the source line and feed of the outgoing move).
   void push(const Move& move, std::vector<Move>& out);
   /// A dwell or the end of the program: the move held back is handed on.
   void flush(std::vector<Move>& out);
 
  private:
   struct Held {
-    Move move;
+    Move move;                                    // as programmed
     Vec3 start = Vec3::Zero();                    // where it starts now (trimmed by the blend before) [mm]
-    Vec3 from = Vec3::Zero(), to = Vec3::Zero();  // the programmed line [mm]
+    Vec3 from = Vec3::Zero(), to = Vec3::Zero();  // the programmed move's ends [mm]
+    double u_start = 0.0;                         // the parameter of `start` on the programmed curve
+    bool line = true;                             // a line (else an arc)
   };
+  // Blends the junction of the held move with `move` where one of them is an arc; false where it
+  // is not blended (nothing is handed on then).
+  bool blend_with_arc(const Move& move, bool move_is_line, std::vector<Move>& out);
   bool enabled_;
   const Machine* machine_;
   BlendSpeed speed_;
+  JunctionSpeed junction_;
   std::optional<Held> held_;
 };
 

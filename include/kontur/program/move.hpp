@@ -24,6 +24,11 @@ struct ProgrammedCorner {
   Vec3 corner = Vec3::Zero();  ///< the corner point [mm]
   Vec3 after = Vec3::Zero();   ///< end of the outgoing line [mm]
   double tolerance_mm = 0.0;   ///< the G64 tolerance the blend must keep [mm]
+  /// Where an arc meets the corner (a blend of a junction with an arc): the programmed pieces the
+  /// blend replaces, the end of the incoming move from `before` to `corner` and the start of the
+  /// outgoing one from `corner` to `after` (a line or a piece of the arc); null between two lines,
+  /// which are the segments above.
+  std::shared_ptr<const Curve> before_curve, after_curve;
 };
 
 /// The programmed lines a smoothed line's curve replaces (program/line_smoother.hpp): the run's

@@ -25,9 +25,10 @@ struct PathHandlers {
 class ProgramPath {
  public:
   /// `blend` false: corners are junctions (`--no-blend`); `smooth` false: runs of dense lines stay
-  /// lines (`--no-smooth`); `speed` estimates how fast a blend runs (CornerBlender; without it
-  /// every corner within its tolerance is blended).
-  ProgramPath(const Machine& machine, bool blend, bool smooth, BlendSpeed speed = {});
+  /// lines (`--no-smooth`); `speed` estimates how fast a blend runs and `junction` how fast a
+  /// junction with an arc is passed without one (CornerBlender; without `speed` every corner within
+  /// its tolerance is blended).
+  ProgramPath(const Machine& machine, bool blend, bool smooth, BlendSpeed speed = {}, JunctionSpeed junction = {});
   ProgramPath(const ProgramPath&) = delete;
   ProgramPath& operator=(const ProgramPath&) = delete;
 
@@ -52,6 +53,7 @@ class ProgramPath {
   bool blend_;
   bool smooth_;
   BlendSpeed speed_;
+  JunctionSpeed junction_;
   LineSmoother smoother_;
   CornerBlender blender_;
   std::vector<Move> smoothed_;  // moves out of the smoother, into the blender
