@@ -28,21 +28,7 @@ double corner_deviation(const Curve& c, const Vec3& before, const Vec3& corner, 
     const Vec3 p = c.point(u);
     return std::min(segment_distance(p, before, corner), segment_distance(p, corner, after));
   };
-  const int n = tolerances::blend_deviation_samples;
-  const double u0 = c.u_min(), h = (c.u_max() - c.u_min()) / n;
-  double best = 0.0;
-  int best_k = 0;
-  for (int k = 0; k <= n; ++k) {
-    const double v = dev(u0 + h * k);
-    if (v > best) {
-      best = v;
-      best_k = k;
-    }
-  }
-  const double lo = std::max(c.u_min(), u0 + h * (best_k - 1)), hi = std::min(c.u_max(), u0 + h * (best_k + 1));
-  // (the largest deviation: the least of its negative)
-  const double negative_peak = golden_section_minimum([&](double u) { return -dev(u); }, lo, hi, 60).second;
-  return std::max(best, -negative_peak);
+  return sampled_maximum(dev, c.u_min(), c.u_max(), tolerances::blend_deviation_samples);
 }
 
 double unit_blend_deviation(const Vec3& t1, const Vec3& t2) {

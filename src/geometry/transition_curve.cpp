@@ -53,65 +53,37 @@ CurveEnd curve_end(const Curve& curve, double u, bool left) {
 
 namespace {
 
-// A short curve (a line, or an arc of less than a turn) to measure distances to: its ends, and the
-// parameter of the last foot found (the next point's search starts there).
+// A piece of the programmed path to measure distances to: a line or an arc exactly (an arc by
+// HelixArc::distance_mm); another curve by the nearest of 65 of its points (never nearer than
+// the curve: the blender then sizes the blend more cautiously).
 struct Target {
-  explicit Target(const Curve& c)
-      : curve(c), line(dynamic_cast<const LineSegment*>(&c)), arc(arc_span(c)), start(c.point(c.u_min())),
-        end(c.point(c.u_max())), u(c.u_min()) {}
-  // Distance [mm] from p: a line's exactly, an arc's by HelixArc::distance_mm; else Newton on
-  // (C(u) - p) . C'(u) = 0 from the last foot, kept in the range, and the ends (the foot of a point
-  // beyond them).
-  double distance(const Vec3& p) {
+  explicit Target(const Curve& c) : line(dynamic_cast<const LineSegment*>(&c)), arc(arc_span(c)) {
+    if (line != nullptr || arc.arc != nullptr) return;
+    constexpr int n = 64;
+    for (int k = 0; k <= n; ++k) points.push_back(c.point(k == n ? c.u_max() : c.u_min() + (c.u_max() - c.u_min()) * k / n));
+  }
+  [[nodiscard]] double distance(const Vec3& p) const {
     if (line != nullptr) return segment_distance(p, line->start(), line->end());
     if (arc.arc != nullptr) return arc.arc->distance_mm(p, arc.u0, arc.u1);
-    const double lo = curve.u_min(), hi = curve.u_max();
-    double at_u = std::numeric_limits<double>::infinity();
-    for (int i = 0; i < 30; ++i) {
-      const Derivatives d = curve.derivatives(u, 2);
-      const Vec3 r = d[0] - p;
-      at_u = r.norm();
-      const double f = r.dot(d[1]), fp = d[1].squaredNorm() + r.dot(d[2]);
-      if (!(fp > 0.0)) break;
-      const double next = std::clamp(u - f / fp, lo, hi);
-      if (std::abs(next - u) <= 1e-15 * std::max(1.0, std::abs(u))) break;
-      u = next;
-    }
-    return std::min({at_u, (start - p).norm(), (end - p).norm()});
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Vec3& q : points) nearest = std::min(nearest, (q - p).norm());
+    return nearest;
   }
-  const Curve& curve;
   const LineSegment* line;
   ArcSpan arc;
-  Vec3 start, end;
-  double u;
+  std::vector<Vec3> points;
 };
 
 }  // namespace
 
 double curves_deviation(const Curve& curve, const Curve& a, const Curve& b, int samples) {
-  Target ta(a), tb(b);
-  const auto dev = [&](double u) {
-    const Vec3 p = curve.point(u);
-    return std::min(ta.distance(p), tb.distance(p));
-  };
-  const int n = std::max(samples, 2);
-  const double u0 = curve.u_min(), h = (curve.u_max() - curve.u_min()) / n;
-  double best = 0.0;
-  int best_k = 0;
-  for (int k = 0; k <= n; ++k) {
-    const double v = dev(u0 + h * k);
-    if (v > best) {
-      best = v;
-      best_k = k;
-    }
-  }
-  const double lo = std::max(curve.u_min(), u0 + h * (best_k - 1)), hi = std::min(curve.u_max(), u0 + h * (best_k + 1));
-  // (the feet start again from the largest sample's neighbourhood)
-  ta.u = a.u_min();
-  tb.u = b.u_min();
-  dev(lo);
-  const double negative_peak = golden_section_minimum([&](double u) { return -dev(u); }, lo, hi, 60).second;
-  return std::max(best, -negative_peak);
+  const Target ta(a), tb(b);
+  return sampled_maximum(
+      [&](double u) {
+        const Vec3 p = curve.point(u);
+        return std::min(ta.distance(p), tb.distance(p));
+      },
+      curve.u_min(), curve.u_max(), samples);
 }
 
 }  // namespace kontur

@@ -38,6 +38,19 @@ bool worth_blending(const CornerBlendCurve& blend, double d, double feed_mm_s, c
   return t_blend < corner_time(d, feed_mm_s, 0.0, machine);
 }
 
+// The blend move of a corner: the source line and feed of the outgoing move.
+Move blend_move(std::shared_ptr<const Curve> blend, double length_mm, const Move& outgoing, ProgrammedCorner corner) {
+  Move bm;
+  bm.curve = std::move(blend);
+  bm.feed_mm_s = outgoing.feed_mm_s;
+  bm.exact_stop = false;
+  bm.source_line = outgoing.source_line;
+  bm.type = "blend";
+  bm.length_mm = length_mm;
+  bm.corner = std::move(corner);
+  return bm;
+}
+
 // `m` running along the line from `a` to `b` instead (its length recomputed).
 Move with_line(const Move& m, const Vec3& a, const Vec3& b) {
   Move out = m;
@@ -78,15 +91,8 @@ void CornerBlender::push(const Move& move, std::vector<Move>& out) {
           Move in = with_line(h.move, h.start, end_in);
           in.exact_stop = false;
           out.push_back(std::move(in));
-          Move bm;
-          bm.curve = blend;
-          bm.feed_mm_s = move.feed_mm_s;
-          bm.exact_stop = false;
-          bm.source_line = move.source_line;
-          bm.type = "blend";
-          bm.length_mm = length(*blend);
-          bm.corner = ProgrammedCorner{h.from, h.to, line->end(), tolerance_mm, nullptr, nullptr};
-          out.push_back(std::move(bm));
+          out.push_back(blend_move(blend, length(*blend), move,
+                                   ProgrammedCorner{h.from, h.to, line->end(), tolerance_mm, nullptr, nullptr}));
           held_ = Held{move, start_out, line->start(), line->end(), 0.0, true};
           return;
         }
@@ -154,16 +160,9 @@ bool CornerBlender::blend_with_arc(const Move& move, bool move_is_line, std::vec
     }
     in.exact_stop = false;
     out.push_back(std::move(in));
-    Move bm;
-    bm.curve = blend;
-    bm.feed_mm_s = move.feed_mm_s;
-    bm.exact_stop = false;
-    bm.source_line = move.source_line;
-    bm.type = "blend";
-    bm.length_mm = blend_mm;
-    bm.corner = ProgrammedCorner{before->point(before->u_min()), end_in.point, after->point(after->u_max()),
-                                 tolerance_mm, before, after};
-    out.push_back(std::move(bm));
+    out.push_back(blend_move(blend, blend_mm, move,
+                             ProgrammedCorner{before->point(before->u_min()), end_in.point,
+                                              after->point(after->u_max()), tolerance_mm, before, after}));
     const Vec3 from = cb.point(cb.u_min()), to = cb.point(cb.u_max());
     held_ = Held{move, blend->point(1.0), from, to, ub, move_is_line};
     return true;

@@ -37,10 +37,9 @@ class TransitionCurve final : public Curve {
 /// when `left`).
 [[nodiscard]] CurveEnd curve_end(const Curve& curve, double u, bool left);
 
-/// Largest distance [mm] of `curve` from the union of the curves `a` and `b` (short pieces: a
-/// line, or an arc of less than a turn): `samples` + 1 samples, each measured to its nearest point
-/// of a and b (a line's exactly, else by Newton's method from the previous sample's foot), and a
-/// golden-section search around the largest.
+/// Largest distance [mm] of `curve` from the union of the pieces `a` and `b` (lines and arcs,
+/// measured exactly: HelixArc::distance_mm; another curve by the nearest of 65 of its points):
+/// `samples` + 1 samples and a golden-section search around the largest (sampled_maximum).
 [[nodiscard]] double curves_deviation(const Curve& curve, const Curve& a, const Curve& b,
                                       int samples = tolerances::blend_arc_deviation_samples);
 
