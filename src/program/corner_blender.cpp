@@ -102,9 +102,11 @@ void CornerBlender::push(const Move& move, std::vector<Move>& out) {
     }
     flush(out);
   }
-  if (line != nullptr || arc != nullptr) {
-    const Vec3 from = move.curve->point(move.curve->u_min()), to = move.curve->point(move.curve->u_max());
-    held_ = Held{move, from, from, to, move.curve->u_min(), line != nullptr};
+  if (line != nullptr) {
+    held_ = Held{move, line->start(), line->start(), line->end(), 0.0, true};
+  } else if (arc != nullptr) {
+    const Vec3 from = arc->point(arc->u_min()), to = arc->point(arc->u_max());
+    held_ = Held{move, from, from, to, arc->u_min(), false};
   } else {
     out.push_back(move);
   }
