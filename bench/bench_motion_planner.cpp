@@ -185,7 +185,8 @@ int main(int argc, char** argv) {
         ->Unit(benchmark::kMillisecond);
   });
 
-  // Whole runs: 3D_Chips and the trajectory planner's performance programs on XYZ.ini (1 ms).
+  // Whole runs: 3D_Chips, the trajectory planner's performance programs and diagnostic/rgh.ngc (CAM
+  // output of short lines and arcs: its junctions with arcs are blended) on XYZ.ini (1 ms).
   const auto ini = bench::shared_path("data/gcode/linuxcnc-tp/configs/XYZ.ini");
   static Machine xyz;
   std::vector<bench::fs::path> runs;
@@ -195,6 +196,8 @@ int main(int argc, char** argv) {
     if (bench::fs::exists(bench::shared_path("data/gcode/3D_Chips.ngc"), ec))
       runs.push_back(bench::shared_path("data/gcode/3D_Chips.ngc"));
     for (const auto& p : bench::ngc_files(bench::shared_path("data/gcode/linuxcnc-tp/performance"))) runs.push_back(p);
+    if (bench::fs::exists(bench::shared_path("data/gcode/linuxcnc-tp/diagnostic/rgh.ngc"), ec))
+      runs.push_back(bench::shared_path("data/gcode/linuxcnc-tp/diagnostic/rgh.ngc"));
   } else {
     std::fprintf(stderr, "note: %s absent: whole runs skipped\n", ini.string().c_str());
   }
