@@ -2,11 +2,9 @@
 #include <cmath>
 #include <kontur/geometry/differential.hpp>
 #include <kontur/geometry/golden_section.hpp>
-#include <kontur/geometry/helix_arc.hpp>
-#include <kontur/geometry/line_segment.hpp>
+#include <kontur/geometry/piece_distance.hpp>
 #include <kontur/geometry/transition_curve.hpp>
 #include <kontur/tolerances.hpp>
-#include <limits>
 
 namespace kontur {
 
@@ -51,37 +49,12 @@ CurveEnd curve_end(const Curve& curve, double u, bool left) {
   return e;
 }
 
-namespace {
-
-// A piece of the programmed path to measure distances to: a line or an arc exactly (an arc by
-// HelixArc::distance_mm); another curve by the nearest of 65 of its points (never nearer than
-// the curve: the blender then sizes the blend more cautiously).
-struct Target {
-  explicit Target(const Curve& c) : line(dynamic_cast<const LineSegment*>(&c)), arc(arc_span(c)) {
-    if (line != nullptr || arc.arc != nullptr) return;
-    constexpr int n = 64;
-    for (int k = 0; k <= n; ++k) points.push_back(c.point(k == n ? c.u_max() : c.u_min() + (c.u_max() - c.u_min()) * k / n));
-  }
-  [[nodiscard]] double distance(const Vec3& p) const {
-    if (line != nullptr) return segment_distance(p, line->start(), line->end());
-    if (arc.arc != nullptr) return arc.arc->distance_mm(p, arc.u0, arc.u1);
-    double nearest = std::numeric_limits<double>::infinity();
-    for (const Vec3& q : points) nearest = std::min(nearest, (q - p).norm());
-    return nearest;
-  }
-  const LineSegment* line;
-  ArcSpan arc;
-  std::vector<Vec3> points;
-};
-
-}  // namespace
-
 double curves_deviation(const Curve& curve, const Curve& a, const Curve& b, int samples) {
-  const Target ta(a), tb(b);
+  const PieceDistance to_a(a), to_b(b);
   return sampled_maximum(
       [&](double u) {
         const Vec3 p = curve.point(u);
-        return std::min(ta.distance(p), tb.distance(p));
+        return std::min(to_a(p), to_b(p));
       },
       curve.u_min(), curve.u_max(), samples);
 }

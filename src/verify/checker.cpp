@@ -4,9 +4,8 @@
 #include <array>
 #include <cmath>
 #include <kontur/geometry/differential.hpp>
-#include <kontur/geometry/helix_arc.hpp>
 #include <kontur/geometry/length.hpp>
-#include <kontur/geometry/line_segment.hpp>
+#include <kontur/geometry/piece_distance.hpp>
 #include <kontur/tolerances.hpp>
 #include <kontur/verify/checker.hpp>
 #include <limits>
@@ -330,57 +329,15 @@ void Checker::nearest_on_path(const Vec3& p, std::size_t& m, double& u, double& 
   }
 }
 
-namespace {
-
-// A programmed piece of a corner with an arc (a line or a piece of an arc, less than a turn) and,
-// unless it is a line or an arc, 33 of its points, to measure distances from.
-struct SampledPiece {
-  static constexpr int n = 32;
-  explicit SampledPiece(const Curve& c)
-      : piece(c), line(dynamic_cast<const LineSegment*>(&c)), arc(arc_span(c)) {
-    if (line != nullptr || arc.arc != nullptr) return;
-    const double h = (c.u_max() - c.u_min()) / n;
-    for (int k = 0; k <= n; ++k) {
-      u[static_cast<std::size_t>(k)] = k == n ? c.u_max() : c.u_min() + h * k;
-      points[static_cast<std::size_t>(k)] = c.point(u[static_cast<std::size_t>(k)]);
-    }
-  }
-  // Distance [mm] from p: a line's exactly, an arc's by HelixArc::distance_mm; else the nearest
-  // of the points, refined by Newton between its neighbours.
-  [[nodiscard]] double distance(const Vec3& p) const {
-    if (line != nullptr) return segment_distance(p, line->start(), line->end());
-    if (arc.arc != nullptr) return arc.arc->distance_mm(p, arc.u0, arc.u1);
-    std::size_t best_k = 0;
-    double best = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < points.size(); ++k) {
-      const double d = (points[k] - p).squaredNorm();
-      if (d < best) {
-        best = d;
-        best_k = k;
-      }
-    }
-    const double lo = u[best_k > 0 ? best_k - 1 : 0], hi = u[std::min(best_k + 1, points.size() - 1)];
-    const double at = refine(piece, p, lo, hi, best_k + 1 == points.size() ? 0.5 * (lo + hi) : u[best_k]);
-    return std::min(std::sqrt(best), (piece.point(at) - p).norm());
-  }
-  const Curve& piece;
-  const LineSegment* line;
-  ArcSpan arc;
-  std::array<double, n + 1> u{};
-  std::array<Vec3, n + 1> points{};
-};
-
-}  // namespace
-
 double blend_deviation(const Curve& c, const program::ProgrammedCorner& pc) {
-  std::optional<SampledPiece> before, after;
+  std::optional<PieceDistance> before, after;
   if (pc.before_curve && pc.after_curve) {
     before.emplace(*pc.before_curve);
     after.emplace(*pc.after_curve);
   }
   auto dev = [&](double u) {
     const Vec3 p = c.point(u);
-    if (before) return std::min(before->distance(p), after->distance(p));
+    if (before) return std::min((*before)(p), (*after)(p));
     return std::min(segment_distance(p, pc.before, pc.corner), segment_distance(p, pc.corner, pc.after));
   };
   const int n = tolerances::check_blend_samples;

@@ -37,9 +37,9 @@ class TransitionCurve final : public Curve {
 /// when `left`).
 [[nodiscard]] CurveEnd curve_end(const Curve& curve, double u, bool left);
 
-/// Largest distance [mm] of `curve` from the union of the pieces `a` and `b` (lines and arcs,
-/// measured exactly: HelixArc::distance_mm; another curve by the nearest of 65 of its points):
-/// `samples` + 1 samples and a golden-section search around the largest (sampled_maximum).
+/// Largest distance [mm] of `curve` from the union of the pieces `a` and `b` (each point's by
+/// PieceDistance): `samples` + 1 samples and a golden-section search around the largest
+/// (sampled_maximum).
 [[nodiscard]] double curves_deviation(const Curve& curve, const Curve& a, const Curve& b,
                                       int samples = tolerances::blend_arc_deviation_samples);
 

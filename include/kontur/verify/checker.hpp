@@ -108,8 +108,8 @@ struct Report {
 
 /// Largest distance [mm] of a blend `curve` from the union of its programmed corner's segments
 /// [before, corner] and [corner, after] (or of its programmed pieces before_curve and after_curve,
-/// where an arc meets the corner: each point's distance to a line or a circular arc exactly, to
-/// another piece from the nearest of 33 samples of it, refined by Newton), measured by the checker's own method (independent of the blender's sizing):
+/// where an arc meets the corner: each point's distance by PieceDistance, as the blender's),
+/// measured by the checker's own method (independent of the blender's sizing):
 /// tolerances::check_blend_samples samples, then successive parabolic interpolation around every
 /// local maximum of the samples.
 [[nodiscard]] double blend_deviation(const Curve& curve, const program::ProgrammedCorner& corner);

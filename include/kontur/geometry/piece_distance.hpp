@@ -1,0 +1,32 @@
+#pragma once
+// The distance from a point to a short piece of the programmed path that a blend replaces: how
+// the corner blender sizes a blend (geometry/transition_curve.hpp) and how the checker measures it
+// (verify::blend_deviation), each with its own sampling of the blend.
+#include <kontur/geometry/curve.hpp>
+#include <kontur/geometry/helix_arc.hpp>
+#include <vector>
+
+namespace kontur {
+
+class LineSegment;
+
+/// A piece to measure distances to: a line exactly (segment_distance), an arc or a piece of one
+/// by HelixArc::distance_mm (exact on a circle), another curve from the nearest of 33 of its
+/// points, refined by a golden-section search between that point's neighbours (an upper bound:
+/// never nearer than the curve).
+class PieceDistance {
+ public:
+  /// `piece` is kept by reference.
+  explicit PieceDistance(const Curve& piece);
+  /// Distance [mm] from p to the piece.
+  [[nodiscard]] double operator()(const Vec3& p) const;
+
+ private:
+  const Curve& piece_;
+  const LineSegment* line_;
+  ArcSpan arc_;
+  std::vector<double> u_;   // the sampled parameters of another curve
+  std::vector<Vec3> points_;
+};
+
+}  // namespace kontur
