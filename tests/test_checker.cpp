@@ -177,7 +177,8 @@ TEST(Checker, BlendDeviationAgreesWithTheBlendersOwnMeasure) {
     const CornerBlendCurve blend(corner, t1, t2, d);
     const Vec3 before = corner - 2 * d * t1, after = corner + 2 * d * t2;
     const double theirs = corner_deviation(blend, before, corner, after);
-    const double ours = blend_deviation(blend, {before, corner, after, 1.0, nullptr, nullptr});
+    const double ours = blend_deviation(blend, {std::make_shared<const LineSegment>(before, corner),
+                                                std::make_shared<const LineSegment>(corner, after), 1.0});
     EXPECT_NEAR(ours, theirs, 1e-12 * std::max(1.0, theirs)) << "corner " << i;
   }
 }

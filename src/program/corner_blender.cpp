@@ -92,7 +92,9 @@ void CornerBlender::push(const Move& move, std::vector<Move>& out) {
           in.exact_stop = false;
           out.push_back(std::move(in));
           out.push_back(blend_move(blend, length(*blend), move,
-                                   ProgrammedCorner{h.from, h.to, line->end(), tolerance_mm, nullptr, nullptr}));
+                                   ProgrammedCorner{std::make_shared<const LineSegment>(h.from, h.to),
+                                                    std::make_shared<const LineSegment>(h.to, line->end()),
+                                                    tolerance_mm}));
           held_ = Held{move, start_out, line->start(), line->end(), 0.0, true};
           return;
         }
@@ -163,8 +165,7 @@ bool CornerBlender::blend_with_arc(const Move& move, bool move_is_line, std::vec
     in.exact_stop = false;
     out.push_back(std::move(in));
     out.push_back(blend_move(blend, blend_mm, move,
-                             ProgrammedCorner{before->point(before->u_min()), end_in.point,
-                                              after->point(after->u_max()), tolerance_mm, before, after}));
+                             ProgrammedCorner{before, after, tolerance_mm}));
     const Vec3 from = cb.point(cb.u_min()), to = cb.point(cb.u_max());
     held_ = Held{move, blend->point(1.0), from, to, ub, move_is_line};
     return true;

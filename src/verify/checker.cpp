@@ -9,7 +9,6 @@
 #include <kontur/tolerances.hpp>
 #include <kontur/verify/checker.hpp>
 #include <limits>
-#include <optional>
 #include <utility>
 
 namespace kontur::verify {
@@ -330,15 +329,10 @@ void Checker::nearest_on_path(const Vec3& p, std::size_t& m, double& u, double& 
 }
 
 double blend_deviation(const Curve& c, const program::ProgrammedCorner& pc) {
-  std::optional<PieceDistance> before, after;
-  if (pc.before_curve && pc.after_curve) {
-    before.emplace(*pc.before_curve);
-    after.emplace(*pc.after_curve);
-  }
+  const PieceDistance before(*pc.before), after(*pc.after);
   auto dev = [&](double u) {
     const Vec3 p = c.point(u);
-    if (before) return std::min((*before)(p), (*after)(p));
-    return std::min(segment_distance(p, pc.before, pc.corner), segment_distance(p, pc.corner, pc.after));
+    return std::min(before(p), after(p));
   };
   const int n = tolerances::check_blend_samples;
   const double u0 = c.u_min(), h = (c.u_max() - c.u_min()) / n;

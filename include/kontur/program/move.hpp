@@ -18,17 +18,12 @@ using MoveId = std::uint32_t;
 /// No move (a setpoint read from a file: the checker matches it by its source line).
 inline constexpr MoveId no_move = std::numeric_limits<MoveId>::max();
 
-/// The programmed corner a blend replaces: the lines before -> corner -> after of the program.
+/// The programmed corner a blend replaces: the programmed pieces on both sides of it, each a line
+/// or a piece of an arc.
 struct ProgrammedCorner {
-  Vec3 before = Vec3::Zero();  ///< start of the incoming line [mm]
-  Vec3 corner = Vec3::Zero();  ///< the corner point [mm]
-  Vec3 after = Vec3::Zero();   ///< end of the outgoing line [mm]
-  double tolerance_mm = 0.0;   ///< the G64 tolerance the blend must keep [mm]
-  /// Where an arc meets the corner (a blend of a junction with an arc): the programmed pieces the
-  /// blend replaces, the end of the incoming move from `before` to `corner` and the start of the
-  /// outgoing one from `corner` to `after` (a line or a piece of the arc); null between two lines,
-  /// which are the segments above.
-  std::shared_ptr<const Curve> before_curve, after_curve;
+  std::shared_ptr<const Curve> before;  ///< the incoming move, as programmed, up to the corner
+  std::shared_ptr<const Curve> after;   ///< the outgoing move, as programmed, from the corner
+  double tolerance_mm = 0.0;            ///< the G64 tolerance the blend must keep [mm]
 };
 
 /// The programmed lines a smoothed line's curve replaces (program/line_smoother.hpp): the run's

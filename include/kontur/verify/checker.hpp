@@ -106,10 +106,9 @@ struct Report {
   [[nodiscard]] std::vector<std::string> failures(const Machine& machine) const;
 };
 
-/// Largest distance [mm] of a blend `curve` from the union of its programmed corner's segments
-/// [before, corner] and [corner, after] (or of its programmed pieces before_curve and after_curve,
-/// where an arc meets the corner: each point's distance by PieceDistance, as the blender's),
-/// measured by the checker's own method (independent of the blender's sizing):
+/// Largest distance [mm] of a blend `curve` from the union of its programmed corner's pieces
+/// `before` and `after` (each point's distance by PieceDistance: a line's exactly, an arc's by
+/// HelixArc::distance_mm), measured by the checker's own method (independent of the blender's sizing):
 /// tolerances::check_blend_samples samples, then successive parabolic interpolation around every
 /// local maximum of the samples.
 [[nodiscard]] double blend_deviation(const Curve& curve, const program::ProgrammedCorner& corner);
