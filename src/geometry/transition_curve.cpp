@@ -40,7 +40,10 @@ Derivatives TransitionCurve::derivatives(double u, int order) const noexcept {
 }
 
 CurveEnd curve_end(const Curve& curve, double u, bool left) {
-  const Derivatives d = left ? curve.derivatives_left(u, 2) : curve.derivatives(u, 2);
+  return curve_end(left ? curve.derivatives_left(u, 2) : curve.derivatives(u, 2));
+}
+
+CurveEnd curve_end(const Derivatives& d) {
   CurveEnd e;
   e.point = d[0];
   const double q = d[1].squaredNorm();

@@ -88,9 +88,7 @@ void CornerBlender::push(const Move& move, std::vector<Move>& out) {
             return;
           }
           const Vec3 end_in = blend->point(0.0), start_out = blend->point(1.0);
-          Move in = with_line(h.move, h.start, end_in);
-          in.exact_stop = false;
-          out.push_back(std::move(in));
+          out.push_back(held_until(end_in, 0.0));
           out.push_back(blend_move(blend, length(*blend), move,
                                    ProgrammedCorner{std::make_shared<const LineSegment>(h.from, h.to),
                                                     std::make_shared<const LineSegment>(h.to, line->end()),
@@ -120,7 +118,8 @@ bool CornerBlender::blend_with_arc(const Move& move, bool move_is_line, std::vec
   const Curve& cb = *move.curve;
   const double la = h.move.length_mm, lb = move.length_mm;  // the programmed lengths [mm]
   if (!(la >= tolerances::blend_min_line_mm && lb >= tolerances::blend_min_line_mm)) return false;
-  const CurveEnd end_in = curve_end(ca, ca.u_max(), true), start_out = curve_end(cb, cb.u_min(), false);
+  const Derivatives d_in = ca.derivatives_left(ca.u_max(), 3), d_out = cb.derivatives(cb.u_min(), 3);
+  const CurveEnd end_in = curve_end(d_in), start_out = curve_end(d_out);
   if (!((start_out.point - end_in.point).norm() <= tolerances::blend_arc_contiguous_relative *
                                                         std::max(1.0, end_in.point.norm())))
     return false;
@@ -153,17 +152,10 @@ bool CornerBlender::blend_with_arc(const Move& move, bool move_is_line, std::vec
     const double blend_mm = length(*blend);
     if (machine_ != nullptr && speed_) {
       const double v = speed_(*blend, move.feed_mm_s);  // [mm/s]
-      const double junction_mm_s =
-          junction_ ? junction_(ca.derivatives_left(ca.u_max(), 3), cb.derivatives(cb.u_min(), 3)) : 0.0;
+      const double junction_mm_s = junction_ ? junction_(d_in, d_out) : 0.0;
       if (!(v > 0.0) || !(blend_mm / v < corner_time(d, move.feed_mm_s, junction_mm_s, *machine_))) return false;
     }
-    Move in = h.line ? with_line(h.move, h.start, blend->point(0.0)) : h.move;
-    if (!h.line) {
-      in.curve = std::make_shared<const CurvePiece>(h.move.curve, h.u_start, ua);
-      in.length_mm = length(*in.curve);
-    }
-    in.exact_stop = false;
-    out.push_back(std::move(in));
+    out.push_back(held_until(blend->point(0.0), ua));
     out.push_back(blend_move(blend, blend_mm, move,
                              ProgrammedCorner{before, after, tolerance_mm}));
     const Vec3 from = cb.point(cb.u_min()), to = cb.point(cb.u_max());
@@ -173,19 +165,19 @@ bool CornerBlender::blend_with_arc(const Move& move, bool move_is_line, std::vec
   return false;
 }
 
+Move CornerBlender::held_until(const Vec3& end, double u_end) const {
+  const Held& h = *held_;
+  if (h.line) return h.start == h.from && end == h.to ? h.move : with_line(h.move, h.start, end);
+  if (h.u_start == h.move.curve->u_min() && u_end == h.move.curve->u_max()) return h.move;
+  Move m = h.move;
+  m.curve = std::make_shared<const CurvePiece>(h.move.curve, h.u_start, u_end);
+  m.length_mm = length(*m.curve);
+  return m;
+}
+
 void CornerBlender::flush(std::vector<Move>& out) {
   if (!held_) return;
-  Held& h = *held_;
-  if (h.line) {
-    out.push_back(h.start != h.from ? with_line(h.move, h.start, h.to) : h.move);
-  } else if (h.u_start != h.move.curve->u_min()) {  // an arc after a blend: the rest of it
-    Move m = h.move;
-    m.curve = std::make_shared<const CurvePiece>(h.move.curve, h.u_start, h.move.curve->u_max());
-    m.length_mm = length(*m.curve);
-    out.push_back(std::move(m));
-  } else {
-    out.push_back(h.move);
-  }
+  out.push_back(held_until(held_->to, held_->move.curve->u_max()));
   held_.reset();
 }
 

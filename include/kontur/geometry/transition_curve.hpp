@@ -33,6 +33,8 @@ class TransitionCurve final : public Curve {
   std::array<Vec3, 6> c_;  // monomial coefficients in u [mm]
 };
 
+/// Point, unit tangent and curvature vector from a curve's derivatives (order 2 at least).
+[[nodiscard]] CurveEnd curve_end(const Derivatives& d);
 /// The end of `curve` at u: point, unit tangent and curvature vector (the limit from the left
 /// when `left`).
 [[nodiscard]] CurveEnd curve_end(const Curve& curve, double u, bool left);

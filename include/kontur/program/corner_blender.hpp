@@ -56,6 +56,10 @@ class CornerBlender {
     double u_start = 0.0;                         // the parameter of `start` on the programmed curve
     bool line = true;                             // a line (else an arc)
   };
+  // The held move from where it starts now up to the point `end` (a line: from `start`) or up to
+  // the parameter `u_end` of its programmed curve (an arc: its piece from u_start); as programmed
+  // where it is not trimmed.
+  [[nodiscard]] Move held_until(const Vec3& end, double u_end) const;
   // Blends the junction of the held move with `move` where one of them is an arc; false where it
   // is not blended (nothing is handed on then).
   bool blend_with_arc(const Move& move, bool move_is_line, std::vector<Move>& out);
