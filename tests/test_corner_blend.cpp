@@ -5,7 +5,6 @@
 
 #include <cmath>
 #include <deque>
-#include <limits>
 #include <kontur/geometry/curve_piece.hpp>
 #include <kontur/geometry/golden_section.hpp>
 #include <kontur/geometry/helix_arc.hpp>
@@ -16,6 +15,7 @@
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/program/corner_blender.hpp>
 #include <kontur/verify/checker.hpp>
+#include <limits>
 #include <memory>
 #include <random>
 #include <vector>
@@ -115,6 +115,28 @@ TEST(CornerBlend, ExactStopKeepsTheCorner) {
   // And so does --no-blend.
   EXPECT_EQ(blend_polyline({{0, 0, 0}, {10, 0, 0}, {10, 10, 0}}, 0.01, false).size(), 2U);
   EXPECT_EQ(blend_polyline({{0, 0, 0}, {10, 0, 0}, {10, 10, 0}}, 0.01).size(), 3U);
+}
+
+// Found by the Haas 4-axis corpus program once blends paid there: the blend moves had the extra
+// axes at zero, so A jumped from 10 degrees to 0 and back at every blended corner.
+TEST(CornerBlend, ABlendKeepsTheExtraAxesWhereBothMovesHaveThem) {
+  ExtraAxes at{};
+  at[0] = 10.0;  // A [deg]
+  at[4] = -2.5;  // V [mm]
+  program::CornerBlender blender(true);
+  std::vector<program::Move> out;
+  for (const auto& [a, b] : {std::pair{Vec3(0, 0, 0), Vec3(10, 0, 0)}, std::pair{Vec3(10, 0, 0), Vec3(10, 10, 0)}}) {
+    program::Move m = line_move(a, b, 0.05);
+    m.extra_start = m.extra_end = at;
+    blender.push(m, out);
+  }
+  blender.flush(out);
+  ASSERT_EQ(out.size(), 3u);
+  ASSERT_TRUE(out[1].corner.has_value());
+  for (const program::Move& m : out) {
+    EXPECT_EQ(m.extra_start, at);
+    EXPECT_EQ(m.extra_end, at);
+  }
 }
 
 TEST(CornerBlend, ShortLinesKeepAStraightMiddle) {
@@ -254,11 +276,15 @@ std::vector<program::Move> line_arc_chain(std::mt19937_64& rng, int pieces, doub
 
 std::vector<program::Move> blend_moves(const std::vector<program::Move>& moves, const Machine* machine = nullptr) {
   program::CornerBlender blender =
-      machine ? program::CornerBlender(
-                    true, machine,
-                    [machine](const Curve& c, double feed_mm_s) { return plan::curve_speed_cap(c, feed_mm_s, *machine); },
-                    [machine](const Derivatives& a, const Derivatives& b) { return plan::junction(a, b, *machine).velocity; })
-              : program::CornerBlender(true);
+      machine
+          ? program::CornerBlender(
+                true, machine,
+                [machine](const Curve& c, double feed_mm_s) { return plan::curve_speed_cap(c, feed_mm_s, *machine); },
+                [machine](const Derivatives& a, const Derivatives& b) {
+                  const plan::Junction j = plan::junction(a, b, *machine);
+                  return program::JunctionPass{j.velocity, j.jerk_share};
+                })
+          : program::CornerBlender(true);
   std::vector<program::Move> out;
   for (const program::Move& m : moves) blender.push(m, out);
   blender.flush(out);
@@ -306,7 +332,7 @@ TEST(CornerBlend, JunctionsWithArcsBlendCurvatureContinuousWithinTheTolerance) {
     }
   }
   EXPECT_GT(blends, 300);
-  EXPECT_GT(tangent, 50);         // tangent junctions with a jump of curvature are blended too
+  EXPECT_GT(tangent, 50);        // tangent junctions with a jump of curvature are blended too
   EXPECT_GT(at_tolerance, 100);  // where the moves are long enough, the blend uses its tolerance
 }
 
@@ -349,12 +375,74 @@ TEST(CornerBlend, ArcBlendsPassTheCheckAndRunFasterThanTheirJunctions) {
       for (const auto& f : r->report.failures(machine)) failures += "\n  " + f;
       EXPECT_TRUE(r->report.passed(machine)) << kink_deg << " degrees" << failures;
     }
-    EXPECT_EQ(smooth.report.blends, 7) << kink_deg << " degrees";
+    // Tangent junctions lose only their jump of curvature: every one is blended, much faster. A
+    // corner of 20 degrees blended within 0.02 mm is still a slow turn, about as fast as the near
+    // stop (1 % faster): the blender may take either (TheBlenderChoosesTheFasterOfBlendAndJunction).
+    if (kink_deg == 0.0) {
+      EXPECT_EQ(smooth.report.blends, 7);
+      EXPECT_LT(smooth.time_s, 0.9 * sharp.time_s) << sharp.time_s;
+    } else {
+      EXPECT_LE(smooth.time_s, 1.02 * sharp.time_s) << sharp.time_s;
+    }
     EXPECT_LE(smooth.report.max_blend_deviation_mm, machine.path_tolerance_mm);
-    // (a tangent junction loses only its jump of curvature: much faster; a corner of 20 degrees
-    // blended within 0.02 mm is still a slow turn, a little faster than the near stop)
-    EXPECT_LT(smooth.time_s, (kink_deg == 0.0 ? 0.9 : 0.99) * sharp.time_s) << kink_deg << " degrees " << sharp.time_s;
   }
+}
+
+// The blender blends a junction only where its estimate says the blend is faster than passing
+// the junction as it is (a stop at a corner). Its choice, against both: a line meeting a line at
+// a corner, or a half circle tangentially or at a kink, on the default machine and on one whose
+// jerk is A / T (each jerk ramp a servo period long: stops cost little more than the speed
+// change itself, so the estimate must count the acceleration, not only the jerk).
+TEST(CornerBlend, TheBlenderChoosesTheFasterOfBlendAndJunction) {
+  Machine soft = default_machine(), stiff = default_machine();
+  for (AxisLimits& a : stiff.axes) a.max_jerk = a.max_acceleration / stiff.servo_period_s;
+  const auto time_of = [](const Machine& machine, std::vector<program::Move> ms) {
+    const std::vector<verify::Sample> samples = testing::plan_and_sample(machine, ms);
+    for (std::size_t i = 0; i < ms.size(); ++i) ms[i].id = static_cast<program::MoveId>(i);
+    const verify::Report report = verify::check(samples, ms, machine);
+    EXPECT_TRUE(report.passed(machine));
+    return samples.back().t_s;
+  };
+  int cases = 0, blended = 0, kept = 0;
+  for (const Machine* machine : {&soft, &stiff}) {
+    for (const double tol_mm : {0.01, 0.1}) {
+      for (const double turn_deg : {0.0, 20.0, 45.0, 90.0, 120.0}) {
+        for (const bool arc : {false, true}) {
+          if (!arc && turn_deg == 0.0) continue;  // two collinear lines: no corner
+          const Vec3 t = Eigen::AngleAxisd(turn_deg * M_PI / 180.0, Vec3::UnitZ()) * Vec3::UnitX();
+          std::shared_ptr<const Curve> second;
+          if (arc) {
+            CircleFrame f;
+            f.normal = Vec3::UnitZ();
+            f.e1 = t.cross(f.normal);
+            f.e2 = f.normal.cross(f.e1);
+            f.centre = Vec3(10.0, 0.0, 0.0) - 3.0 * f.e1;
+            second = std::make_shared<const HelixArc>(f, 3.0, M_PI);
+          } else {
+            second = std::make_shared<const LineSegment>(Vec3(10.0, 0.0, 0.0), Vec3(10.0, 0.0, 0.0) + 10.0 * t);
+          }
+          std::vector<program::Move> moves{line_move(Vec3::Zero(), Vec3(10.0, 0.0, 0.0), tol_mm, 150.0, false, 1),
+                                           program::move_along(second, 150.0, false, 2)};
+          moves[1].corner_tolerance_mm = tol_mm;
+          const std::vector<program::Move> chosen = blend_moves(moves, machine), forced = blend_moves(moves);
+          const double t_chosen = time_of(*machine, chosen), t_forced = time_of(*machine, forced),
+                       t_kept = time_of(*machine, moves);
+          ASSERT_EQ(forced.size(), 3u) << turn_deg << " degrees, arc " << arc;  // the blend is possible
+          ++cases;
+          (chosen.size() == 3u ? blended : kept) += 1;
+          // (the estimate is an estimate: within 4 % of the better choice; until 2026-12-04 it refused
+          // blends 4-25 % faster here: a tangent arc on the soft machine, 20 and 45 degrees on the stiff)
+          EXPECT_LE(t_chosen, 1.04 * std::min(t_forced, t_kept))
+              << (machine == &stiff ? "stiff" : "soft") << " machine, tolerance " << tol_mm << " mm, turn " << turn_deg
+              << " degrees, arc " << arc << ": chosen " << t_chosen << " s, blended " << t_forced << " s, kept "
+              << t_kept << " s";
+        }
+      }
+    }
+  }
+  EXPECT_EQ(cases, 36);
+  EXPECT_GT(blended, 5);  // both choices are made
+  EXPECT_GT(kept, 5);
 }
 
 TEST(CornerBlend, CheckerMeasuresAnArcBlendAgainstTheProgrammedArc) {
@@ -368,7 +456,8 @@ TEST(CornerBlend, CheckerMeasuresAnArcBlendAgainstTheProgrammedArc) {
   f.centre = Vec3(10.0, 2.0, 0.0);
   const auto line = std::make_shared<const LineSegment>(Vec3::Zero(), Vec3(10.0, 0.0, 0.0));
   const auto arc = std::make_shared<const HelixArc>(f, 2.0, M_PI / 2.0);
-  std::vector<program::Move> moves = {program::move_along(line, 100.0, false, 1), program::move_along(arc, 100.0, false, 2)};
+  std::vector<program::Move> moves = {program::move_along(line, 100.0, false, 1),
+                                      program::move_along(arc, 100.0, false, 2)};
   for (auto& m : moves) m.corner_tolerance_mm = 0.01;
   const auto out = blend_moves(moves);
   ASSERT_EQ(out.size(), 3U);
@@ -392,8 +481,8 @@ TEST(CornerBlend, CheckerMeasuresAnArcBlendAgainstTheProgrammedArc) {
   program::ProgrammedCorner moved = pc;
   CircleFrame g = f;
   g.centre += Vec3(0.0, 0.03, 0.0);
-  moved.after = std::make_shared<const CurvePiece>(std::make_shared<const HelixArc>(g, 2.0, M_PI / 2.0), 0.0,
-                                                   pc.after->u_max());
+  moved.after =
+      std::make_shared<const CurvePiece>(std::make_shared<const HelixArc>(g, 2.0, M_PI / 2.0), 0.0, pc.after->u_max());
   const Vec3 shift(0.0, 0.03, 0.0);
   moved.before = std::make_shared<const LineSegment>(pc.before->point(pc.before->u_min()) + shift,
                                                      pc.before->point(pc.before->u_max()) + shift);
@@ -430,7 +519,8 @@ TEST(HelixArcDistance, EqualsTheNearestOfDenseSamplesOnCirclesHelicesAndSpirals)
         if (dist(u0 + h * j) < dist(u0 + h * best_j)) best_j = j;
       const double brute = std::min(
           dist(u0 + h * best_j),
-          golden_section_minimum(dist, std::max(u0, u0 + h * (best_j - 1)), std::min(u1, u0 + h * (best_j + 1)), 200).second);
+          golden_section_minimum(dist, std::max(u0, u0 + h * (best_j - 1)), std::min(u1, u0 + h * (best_j + 1)), 200)
+              .second);
       EXPECT_NEAR(arc.distance_mm(p, u0, u1), brute, kind == 0 ? 1e-9 + 1e-8 * r : 1e-7 + 1e-8 * r)
           << "arc " << i << " point " << k;
     }

@@ -448,6 +448,12 @@ inline constexpr double blend_max_trim_share = 0.45;
 /// relative to the larger of 1 mm and the distance of the corner from the origin (an arc's end is
 /// computed from its centre and angle).
 inline constexpr double blend_arc_contiguous_relative = 1e-9;
+/// Bisection steps of the corner blender's estimate of the time to cover a distance while speeding
+/// up (an S-curve's phases inverted; 60 halve it to the last bit of a double).
+inline constexpr int blend_estimate_bisections = 60;
+/// Least share of the acceleration [squared] the estimate leaves a curved move speeding up at its
+/// cap (its centripetal part takes the rest).
+inline constexpr double blend_estimate_least_acceleration_share = 0.05;
 /// Trim distances tried at a junction with an arc before it is left unblended (each tried one is
 /// shrunk by the ratio of the tolerance to its deviation).
 inline constexpr int blend_arc_attempts = 12;

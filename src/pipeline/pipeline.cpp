@@ -38,7 +38,8 @@ Pipeline::Pipeline(Machine machine, PipelineOptions options)
           machine_, options.blend, options.smooth,
           [this](const Curve& blend, double feed_mm_s) { return plan::curve_speed_cap(blend, feed_mm_s, machine_); },
           [this](const Derivatives& end_in, const Derivatives& start_out) {
-            return plan::junction(end_in, start_out, machine_).velocity;  // (infinite where smooth)
+            const plan::Junction j = plan::junction(end_in, start_out, machine_);
+            return program::JunctionPass{j.velocity, j.jerk_share};  // (velocity infinite where smooth)
           }) {}
 
 gcode::ReaderOptions program_reader_options(const std::string& program, const ProgramReading& reading,

@@ -585,7 +585,9 @@ Junction tighter(const Junction& a, const Junction& b) noexcept {
 
 double curve_speed_cap(const Curve& curve, double feed_mm_s, const Machine& machine) {
   const PathGeometry g = path_geometry(curve, curve.u_min(), curve.u_max());
-  return speed_cap(g, feed_mm_s, machine, tolerances::plan_centripetal_shares[0]);
+  // (the largest shares: a blend runs at about one speed, so the path acceleration needs little)
+  return speed_cap(g, feed_mm_s, machine, std::end(tolerances::plan_centripetal_shares)[-1],
+                   std::end(tolerances::plan_curvature_rate_jerk_shares)[-1]);
 }
 
 }  // namespace kontur::plan

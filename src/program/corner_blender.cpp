@@ -13,29 +13,92 @@
 namespace kontur::program {
 namespace {
 
-// The smallest linear axis jerk [mm/s^3].
-double smallest_jerk(const Machine& machine) {
-  double jerk = std::numeric_limits<double>::infinity();
+// The smallest linear axis acceleration [mm/s^2] and jerk [mm/s^3].
+struct SmallestLimits {
+  double acceleration_mm_s2 = std::numeric_limits<double>::infinity();
+  double jerk_mm_s3 = std::numeric_limits<double>::infinity();
+};
+SmallestLimits smallest_limits(const Machine& machine) {
+  SmallestLimits l;
   for (const AxisLimits& a : machine.axes)
-    if (linear_axis_index(a.name) >= 0) jerk = std::min(jerk, a.max_jerk);
-  return jerk;
+    if (linear_axis_index(a.name) >= 0) {
+      l.acceleration_mm_s2 = std::min(l.acceleration_mm_s2, a.max_acceleration);
+      l.jerk_mm_s3 = std::min(l.jerk_mm_s3, a.max_jerk);
+    }
+  return l;
 }
 
-// The time [s] to pass the 2 d [mm] around a corner without a blend: stopping at the corner and
-// starting again within d on each side at the smallest axis jerk, or passing it at
-// junction_mm_s where that is faster (a corner that is a near stop has junction_mm_s 0).
-double corner_time(double d, double feed_mm_s, double junction_mm_s, const Machine& machine) {
-  const double t_stop = std::max(2.0 * std::cbrt(6.0 * d / smallest_jerk(machine)), 2.0 * d / feed_mm_s);
-  return junction_mm_s > 0.0 ? std::min(t_stop, 2.0 * d / junction_mm_s) : t_stop;
+// The time [s] to cover x [mm] from v0 [mm/s] with zero acceleration, speeding up to v_max
+// [mm/s] and then cruising: the jerk-limited S-curve at the limits l.
+double time_to_cover(double v0, double x, double v_max, const SmallestLimits& l) {
+  if (!(x > 0.0)) return 0.0;
+  if (!(v_max > v0)) return x / v0;
+  const double a = l.acceleration_mm_s2, j = l.jerk_mm_s3;
+  const double dv = v_max - v0;
+  const bool full = dv >= a * a / j;                   // the acceleration reaches its limit
+  const double t1 = full ? a / j : std::sqrt(dv / j);  // [s] each jerk phase
+  const double peak = j * t1;                          // [mm/s^2]
+  const double t2 = full ? dv / a - a / j : 0.0;       // [s] at the peak acceleration
+  const double total = 2.0 * t1 + t2;                  // [s] of the whole change
+  const double s_change = 0.5 * (v0 + v_max) * total;  // [mm] covered in it
+  if (x >= s_change) return total + (x - s_change) / v_max;
+  const double v1 = v0 + 0.5 * peak * t1, s1 = v0 * t1 + j * t1 * t1 * t1 / 6.0;
+  const auto s_at = [&](double t) {  // [mm] covered after t [s]
+    if (t <= t1) return v0 * t + j * t * t * t / 6.0;
+    if (t <= t1 + t2) return s1 + v1 * (t - t1) + 0.5 * peak * (t - t1) * (t - t1);
+    const double r = total - t;  // the last jerk phase, from its end
+    return s_change - (v_max * r - j * r * r * r / 6.0);
+  };
+  double lo = 0.0, hi = total;
+  for (int i = 0; i < tolerances::blend_estimate_bisections; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (s_at(mid) < x ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
 }
 
-// Is the blend (trim d [mm]) estimated to be faster than the corner's stop?
-bool worth_blending(const CornerBlendCurve& blend, double d, double feed_mm_s, const Machine& machine,
-                    const BlendSpeed& speed) {
-  const double v = speed(blend, feed_mm_s);  // [mm/s]
-  if (!(v > 0.0)) return false;
-  const double t_blend = 2.0 * d / v;
-  return t_blend < corner_time(d, feed_mm_s, 0.0, machine);
+// One side of a junction as the estimate sees it: the move's programmed length [mm], the speed it
+// can run at [mm/s] and its curvature at the junction [1/mm].
+struct Side {
+  double length_mm;
+  double cap_mm_s;
+  double curvature_per_mm;
+};
+
+Side side_of(const Move& m, double length_mm, double curvature_per_mm, const BlendSpeed& speed) {
+  return {length_mm, speed(*m.curve, m.feed_mm_s), curvature_per_mm};
+}
+
+// Is a blend of length blend_mm [mm] run at v_blend [mm/s], trimming d [mm] of each move, faster
+// than passing the junction as it is (`junction`: its speed, 0 for a stop, and the share of the
+// jerk it takes from the moves beside it)? Both are timed over a window of half of each move (the
+// other half belongs to the junction at its other end), speeding up from the junction (or the
+// blend's end) to the move's cap at the smallest axis acceleration and jerk (on a curve, the
+// acceleration its centripetal part leaves at the cap): what a slow blend saves near the corner
+// it can lose speeding up from its lower speed further out, and a stop costs the time to reach
+// speed again, acceleration included. (Until 2026-12-04 the estimate timed only the 2 d around
+// the corner and a stop by the jerk alone: with a large jerk a stop looked almost free, and a
+// machine with ten times the jerk ran arc programs slower.)
+bool blend_pays(double blend_mm, double v_blend, double d, const Side& a, const Side& b, const JunctionPass& junction,
+                const Machine& machine) {
+  if (!(v_blend > 0.0) || !(blend_mm > 0.0)) return false;
+  const SmallestLimits smallest = smallest_limits(machine);
+  double t_blend = blend_mm / v_blend, t_junction = 0.0;
+  for (const Side& side : {a, b}) {
+    // On a curve the centripetal part takes its share of the acceleration: what is left at the cap.
+    SmallestLimits l = smallest;
+    const double centripetal =
+        std::min(1.0, side.cap_mm_s * side.cap_mm_s * side.curvature_per_mm / l.acceleration_mm_s2);
+    l.acceleration_mm_s2 *=
+        std::sqrt(std::max(tolerances::blend_estimate_least_acceleration_share, 1.0 - centripetal * centripetal));
+    const double w = std::max(d, 0.5 * side.length_mm);  // [mm] the window on this side
+    const double v_from = std::min(junction.velocity_mm_s, side.cap_mm_s);
+    t_blend += time_to_cover(std::min(v_blend, side.cap_mm_s), w - d, side.cap_mm_s, l);
+    // (the junction takes its share of the jerk from the moves beside it)
+    l.jerk_mm_s3 *= 1.0 - junction.jerk_share;
+    t_junction += time_to_cover(v_from, w, side.cap_mm_s, l);
+  }
+  return t_blend < t_junction;
 }
 
 // The blend move of a corner: the source line and feed of the outgoing move.
@@ -43,6 +106,8 @@ Move blend_move(std::shared_ptr<const Curve> blend, double length_mm, const Move
   Move bm;
   bm.curve = std::move(blend);
   bm.feed_mm_s = outgoing.feed_mm_s;
+  // The extra axes stand where both moves have them (a move of extra axes is not blended).
+  bm.extra_start = bm.extra_end = outgoing.extra_start;
   bm.exact_stop = false;
   bm.source_line = outgoing.source_line;
   bm.type = "blend";
@@ -82,17 +147,20 @@ void CornerBlender::push(const Move& move, std::vector<Move>& out) {
           double d = std::min(half * la, half * lb);
           if (g > 0.0) d = std::min(d, tolerances::blend_tolerance_share * tolerance_mm / g);
           auto blend = std::make_shared<const CornerBlendCurve>(h.to, t1, t2, d);
-          if (machine_ != nullptr && speed_ && !worth_blending(*blend, d, move.feed_mm_s, *machine_, speed_)) {
+          if (machine_ != nullptr && speed_ &&
+              !blend_pays(length(*blend), speed_(*blend, move.feed_mm_s), d, side_of(h.move, la, 0.0, speed_),
+                          side_of(move, lb, 0.0, speed_), JunctionPass{0.0, tolerances::plan_corner_jerk_share},
+                          *machine_)) {
             flush(out);
             held_ = Held{move, line->start(), line->start(), line->end(), 0.0, true};
             return;
           }
           const Vec3 end_in = blend->point(0.0), start_out = blend->point(1.0);
           out.push_back(held_until(end_in, 0.0));
-          out.push_back(blend_move(blend, length(*blend), move,
-                                   ProgrammedCorner{std::make_shared<const LineSegment>(h.from, h.to),
-                                                    std::make_shared<const LineSegment>(h.to, line->end()),
-                                                    tolerance_mm}));
+          out.push_back(
+              blend_move(blend, length(*blend), move,
+                         ProgrammedCorner{std::make_shared<const LineSegment>(h.from, h.to),
+                                          std::make_shared<const LineSegment>(h.to, line->end()), tolerance_mm}));
           held_ = Held{move, start_out, line->start(), line->end(), 0.0, true};
           return;
         }
@@ -120,8 +188,8 @@ bool CornerBlender::blend_with_arc(const Move& move, bool move_is_line, std::vec
   if (!(la >= tolerances::blend_min_line_mm && lb >= tolerances::blend_min_line_mm)) return false;
   const Derivatives d_in = ca.derivatives_left(ca.u_max(), 3), d_out = cb.derivatives(cb.u_min(), 3);
   const CurveEnd end_in = curve_end(d_in), start_out = curve_end(d_out);
-  if (!((start_out.point - end_in.point).norm() <= tolerances::blend_arc_contiguous_relative *
-                                                        std::max(1.0, end_in.point.norm())))
+  if (!((start_out.point - end_in.point).norm() <=
+        tolerances::blend_arc_contiguous_relative * std::max(1.0, end_in.point.norm())))
     return false;
   const bool corner = (start_out.tangent - end_in.tangent).norm() > tolerances::plan_junction_smooth;
   const bool jump = (start_out.curvature - end_in.curvature).norm() > tolerances::plan_junction_smooth;
@@ -152,12 +220,14 @@ bool CornerBlender::blend_with_arc(const Move& move, bool move_is_line, std::vec
     const double blend_mm = length(*blend);
     if (machine_ != nullptr && speed_) {
       const double v = speed_(*blend, move.feed_mm_s);  // [mm/s]
-      const double junction_mm_s = junction_ ? junction_(d_in, d_out) : 0.0;
-      if (!(v > 0.0) || !(blend_mm / v < corner_time(d, move.feed_mm_s, junction_mm_s, *machine_))) return false;
+      const JunctionPass pass =
+          junction_ ? junction_(d_in, d_out) : JunctionPass{0.0, tolerances::plan_corner_jerk_share};
+      if (!blend_pays(blend_mm, v, d, side_of(h.move, la, end_in.curvature.norm(), speed_),
+                      side_of(move, lb, start_out.curvature.norm(), speed_), pass, *machine_))
+        return false;
     }
     out.push_back(held_until(blend->point(0.0), ua));
-    out.push_back(blend_move(blend, blend_mm, move,
-                             ProgrammedCorner{before, after, tolerance_mm}));
+    out.push_back(blend_move(blend, blend_mm, move, ProgrammedCorner{before, after, tolerance_mm}));
     const Vec3 from = cb.point(cb.u_min()), to = cb.point(cb.u_max());
     held_ = Held{move, blend->point(1.0), from, to, ub, move_is_line};
     return true;

@@ -129,8 +129,9 @@ struct PathGeometry {
                                double curvature_rate_share = tolerances::plan_curvature_rate_jerk_share) noexcept;
 
 /// The speed cap [mm/s] of a whole curve at a programmed feed [mm/s] (speed_cap of its geometry
-/// sampled over its parameter range, the first centripetal share): what the corner blender's
-/// estimate of a blend's speed uses (program::BlendSpeed, wired by the pipeline).
+/// sampled over its parameter range, the largest centripetal and curvature-change shares): what
+/// the corner blender's estimate of a blend's speed and of its moves' speeds uses
+/// (program::BlendSpeed, wired by the pipeline).
 [[nodiscard]] double curve_speed_cap(const Curve& curve, double feed_mm_s, const Machine& machine);
 
 /// The path limits of a stretch of length `length_mm`: its speed cap (speed_cap) and the largest

@@ -23,20 +23,24 @@ namespace kontur::program {
 /// The speed [mm/s] a blend curve can be run at on the machine with a programmed feed [mm/s]:
 /// what planning will allow (the pipeline gives plan::speed_cap; the program stage does not plan).
 using BlendSpeed = std::function<double(const Curve& blend, double feed_mm_s)>;
-/// The speed [mm/s] planning allows at a junction left as it is, from the incoming move's end and
-/// the outgoing move's start (the pipeline gives plan::junction's velocity; 0 for a stop).
-using JunctionSpeed = std::function<double(const Derivatives& end_in, const Derivatives& start_out)>;
+/// How planning passes a junction left as it is: its largest speed [mm/s] (0 for a stop) and the
+/// share of each axis's jerk it takes from the moves on both sides.
+struct JunctionPass {
+  double velocity_mm_s = 0.0;
+  double jerk_share = 0.0;
+};
+/// The junction pass from the incoming move's end and the outgoing move's start (the pipeline
+/// gives plan::junction's).
+using JunctionSpeed = std::function<JunctionPass(const Derivatives& end_in, const Derivatives& start_out)>;
 
 /// The streaming blender: holds back one line or arc move until the next move is known.
 class CornerBlender {
  public:
   /// `enabled` false: every move is handed on as given (`kontur run --no-blend`). With a machine
-  /// (kept by pointer) and its `speed`, a corner is blended only where that is estimated to be
-  /// faster: the blend of length ~2d at that speed against stopping at the corner and starting
-  /// again within d on each side at the smallest axis jerk (tiny blends on very short lines bend
-  /// so sharply that the jerk of the curvature change makes them slower than the stop).
-  /// A junction with an arc is blended where the blend is estimated to be faster than passing the
-  /// junction at `junction`'s speed (a stop where it is not given).
+  /// (kept by pointer) and its `speed`, a junction is blended only where that is estimated to be
+  /// faster than leaving it (docs/planner.md, "Corner blending"): over half of each move, the blend
+  /// at its speed and speeding up from it, against speeding up from the junction's speed (a stop at
+  /// a corner between lines; `junction`'s where an arc is involved, with the jerk share it takes).
   explicit CornerBlender(bool enabled = true, const Machine* machine = nullptr, BlendSpeed speed = {},
                          JunctionSpeed junction = {})
       : enabled_(enabled), machine_(machine), speed_(std::move(speed)), junction_(std::move(junction)) {}
