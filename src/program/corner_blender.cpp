@@ -131,6 +131,7 @@ void CornerBlender::push(const Move& move, std::vector<Move>& out) {
   const bool extra = moves_extra_axes(move);
   const auto* line = extra ? nullptr : dynamic_cast<const LineSegment*>(move.curve.get());
   const auto* arc = extra ? nullptr : dynamic_cast<const HelixArc*>(move.curve.get());
+  double straight_before_mm = 0.0;  // [mm] of the new held line (Held::straight_before_mm)
   if (held_) {
     Held& h = *held_;
     const double tolerance_mm = h.move.corner_tolerance_mm;
@@ -148,9 +149,9 @@ void CornerBlender::push(const Move& move, std::vector<Move>& out) {
           if (g > 0.0) d = std::min(d, tolerances::blend_tolerance_share * tolerance_mm / g);
           auto blend = std::make_shared<const CornerBlendCurve>(h.to, t1, t2, d);
           if (machine_ != nullptr && speed_ &&
-              !blend_pays(length(*blend), speed_(*blend, move.feed_mm_s), d, side_of(h.move, la, 0.0, speed_),
-                          side_of(move, lb, 0.0, speed_), JunctionPass{0.0, tolerances::plan_corner_jerk_share},
-                          *machine_)) {
+              !blend_pays(length(*blend), speed_(*blend, move.feed_mm_s), d,
+                          side_of(h.move, h.straight_before_mm + la, 0.0, speed_), side_of(move, lb, 0.0, speed_),
+                          JunctionPass{0.0, tolerances::plan_corner_jerk_share}, *machine_)) {
             flush(out);
             held_ = Held{move, line->start(), line->start(), line->end(), 0.0, true};
             return;
@@ -168,10 +169,18 @@ void CornerBlender::push(const Move& move, std::vector<Move>& out) {
     } else if (may_blend && (line != nullptr || arc != nullptr) && blend_with_arc(move, line != nullptr, out)) {
       return;
     }
+    // A line going straight on from an untrimmed held line, without a stop, extends its stretch.
+    if (line != nullptr && h.line && !h.move.exact_stop && h.start == h.from) {
+      const Vec3 a = h.to - h.from, b = line->end() - line->start();
+      const double la = a.norm(), lb = b.norm();
+      if (la > 0.0 && lb > 0.0 && (line->start() - h.to).norm() <= 1e-12 * std::max(1.0, h.to.norm()) &&
+          (b / lb - a / la).norm() <= tolerances::plan_junction_smooth)
+        straight_before_mm = h.straight_before_mm + la;
+    }
     flush(out);
   }
   if (line != nullptr) {
-    held_ = Held{move, line->start(), line->start(), line->end(), 0.0, true};
+    held_ = Held{move, line->start(), line->start(), line->end(), 0.0, true, straight_before_mm};
   } else if (arc != nullptr) {
     const Vec3 from = arc->point(arc->u_min()), to = arc->point(arc->u_max());
     held_ = Held{move, from, from, to, arc->u_min(), false};

@@ -59,6 +59,9 @@ class CornerBlender {
     Vec3 from = Vec3::Zero(), to = Vec3::Zero();  // the programmed move's ends [mm]
     double u_start = 0.0;                         // the parameter of `start` on the programmed curve
     bool line = true;                             // a line (else an arc)
+    // The programmed lines running straight on into it, untrimmed and joined smoothly [mm]: the
+    // straight stretch a corner at its end is approached along (the blender's estimate times it).
+    double straight_before_mm = 0.0;
   };
   // The held move from where it starts now up to the point `end` (a line: from `start`) or up to
   // the parameter `u_end` of its programmed curve (an arc: its piece from u_start); as programmed
