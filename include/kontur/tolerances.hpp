@@ -213,7 +213,9 @@ inline constexpr double plan_cross_jerk_share = 0.2;
 /// may take: a stretch chooses the one with the shortest estimated time, where the path keeps at
 /// least plan_path_jerk_share_min of the axis's jerk (on the smoothed random_lines the curvature
 /// change caps the speed, not the centripetal term). The first is the share where a junction's
-/// jerk share leaves no room for more, and the one estimates take (plan_curvature_rate_jerk_share).
+/// jerk share leaves no room for more, and the one the planner's estimates take
+/// (plan_curvature_rate_jerk_share); the corner blender's estimate of a blend takes the largest
+/// (plan::curve_speed_cap).
 inline constexpr double plan_curvature_rate_jerk_shares[] = {0.2, 0.4, 0.6};
 inline constexpr double plan_curvature_rate_jerk_share = plan_curvature_rate_jerk_shares[0];
 inline constexpr double plan_path_jerk_share_min = 0.1;
