@@ -136,11 +136,12 @@ void CornerBlender::push(const Move& move, std::vector<Move>& out) {
     Held& h = *held_;
     const double tolerance_mm = h.move.corner_tolerance_mm;
     const bool may_blend = enabled_ && !h.move.exact_stop && tolerance_mm > 0.0;
-    if (may_blend && line != nullptr && h.line) {
+    if (line != nullptr && h.line) {
+      // Two lines: the held one, as programmed, and the next.
       const Vec3 a = h.to - h.from, b = line->end() - line->start();
       const double la = a.norm(), lb = b.norm();
-      if (la >= tolerances::blend_min_line_mm && lb >= tolerances::blend_min_line_mm &&
-          (line->start() - h.to).norm() <= 1e-12 * std::max(1.0, h.to.norm())) {
+      const bool joined = (line->start() - h.to).norm() <= 1e-12 * std::max(1.0, h.to.norm());
+      if (may_blend && joined && la >= tolerances::blend_min_line_mm && lb >= tolerances::blend_min_line_mm) {
         const Vec3 t1 = a / la, t2 = b / lb;
         if ((t2 - t1).norm() > tolerances::plan_junction_smooth && t1.dot(t2) >= tolerances::blend_min_turn_cos) {
           const double g = unit_blend_deviation(t1, t2);
@@ -166,16 +167,12 @@ void CornerBlender::push(const Move& move, std::vector<Move>& out) {
           return;
         }
       }
-    } else if (may_blend && (line != nullptr || arc != nullptr) && blend_with_arc(move, line != nullptr, out)) {
-      return;
-    }
-    // A line going straight on from an untrimmed held line, without a stop, extends its stretch.
-    if (line != nullptr && h.line && !h.move.exact_stop && h.start == h.from) {
-      const Vec3 a = h.to - h.from, b = line->end() - line->start();
-      const double la = a.norm(), lb = b.norm();
-      if (la > 0.0 && lb > 0.0 && (line->start() - h.to).norm() <= 1e-12 * std::max(1.0, h.to.norm()) &&
+      // A line going straight on from an untrimmed held line, without a stop, extends its stretch.
+      if (joined && !h.move.exact_stop && h.start == h.from && la > 0.0 && lb > 0.0 &&
           (b / lb - a / la).norm() <= tolerances::plan_junction_smooth)
         straight_before_mm = h.straight_before_mm + la;
+    } else if (may_blend && (line != nullptr || arc != nullptr) && blend_with_arc(move, line != nullptr, out)) {
+      return;
     }
     flush(out);
   }
