@@ -7,6 +7,7 @@
 #include <cmath>
 #include <kontur/plan/chain_profile.hpp>
 #include <kontur/trajectory/path_profile.hpp>
+#include <limits>
 #include <optional>
 #include <random>
 #include <vector>
@@ -151,6 +152,97 @@ TEST(ChainProfile, SeededRandomChainsKeepEveryCapAndLimit) {
     }
   }
   EXPECT_GT(planned, 250);  // it gives up rarely
+}
+
+// Checks by sampling that every sample keeps the acceleration and jerk limits of the stretch it
+// lies in (at a junction, within rounding, the larger of both).
+void expect_within_own_limits(const PathProfile& p, const std::vector<CapStretch>& st) {
+  std::vector<double> bounds{0.0};
+  for (const CapStretch& c : st) bounds.push_back(bounds.back() + c.length_mm);
+  const int n = 20000;
+  for (int k = 0; k <= n; ++k) {
+    const auto x = p.sample(p.duration() * k / n);
+    const auto it = std::upper_bound(bounds.begin(), bounds.end(), x.s);
+    const std::size_t i = std::min<std::size_t>(static_cast<std::size_t>(it - bounds.begin()) - 1, st.size() - 1);
+    double a = st[i].max_acceleration, j = st[i].max_jerk;
+    if (i > 0 && x.s - bounds[i] < 1e-9) {
+      a = std::max(a, st[i - 1].max_acceleration);
+      j = std::max(j, st[i - 1].max_jerk);
+    }
+    ASSERT_LE(std::abs(x.a), a * (1 + 1e-9)) << "s " << x.s << " stretch " << i;
+    ASSERT_LE(std::abs(x.j), j * (1 + 1e-9)) << "s " << x.s << " stretch " << i;
+  }
+}
+
+// Issue 12: a chain whose stretches have limits of their own (the pieces of a run of chains: a
+// blend's centripetal part leaves less acceleration than the line beside it). From rest along a
+// long line to rest at the end of a short stretch of a tenth of its acceleration: it speeds up at
+// the line's own acceleration, and brakes at the smallest acceleration of the stretches the
+// braking runs through (one S-curve's limits: here the short stretch's, all the way). The profile
+// at the smallest limits throughout takes 0.927 s, this one 0.705 s.
+TEST(ChainProfile, EachStretchSpeedsUpAtItsOwnLimits) {
+  const std::vector<CapStretch> st{{40.0, 200.0, 2000.0, 50000.0}, {2.0, 200.0, 200.0, 20000.0}};
+  const PathLimits ceiling{200.0, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  const ScurveProfile gentle = plan_scurve(42.0, 0.0, 0.0, {200.0, 200.0, 20000.0});
+  const auto p = plan_chain_profile(st, 0.0, 0.0, ceiling, 0.0005, gentle.duration());
+  ASSERT_TRUE(p.has_value());
+  expect_valid(*p, st, 0.0, 0.0, {200.0, 2000.0, 50000.0});
+  expect_within_own_limits(*p, st);
+  EXPECT_LT(p->duration(), 0.8 * gentle.duration());
+  double a_max = 0.0;
+  for (int k = 0; k <= 2000; ++k) a_max = std::max(a_max, p->sample(p->duration() * k / 2000).a);
+  EXPECT_GT(a_max, 0.99 * 2000.0);
+}
+
+// A run of chains ends where the look-ahead planned it, which may be faster than a cap on the way
+// (the chain before the end had a higher one): the profile slows for that cap and speeds up again
+// to end exactly at v1, instead of aiming for v1 through the slower stretch.
+TEST(ChainProfile, EndsFasterThanACapOnTheWay) {
+  const std::vector<CapStretch> st{{5.0, 100.0, 1000.0, 50000.0}, {0.5, 20.0, 1000.0, 50000.0},
+                                   {5.0, 100.0, 1000.0, 50000.0}};
+  const PathLimits ceiling{100.0, 1000.0, 50000.0};
+  const auto p = plan_chain_profile(st, 10.0, 60.0, ceiling, 0.0005, 1.0);
+  ASSERT_TRUE(p.has_value());
+  expect_valid(*p, st, 10.0, 60.0, ceiling);
+  EXPECT_LE(p->sample(p->time_at(5.25)).v, 20.0 * (1 + 1e-9));
+}
+
+TEST(ChainProfile, SeededRandomChainsKeepEachStretchsOwnLimits) {
+  std::mt19937_64 rng(20261204);
+  std::uniform_real_distribution<double> len(0.01, 5.0), cap(5.0, 200.0), acc(100.0, 3000.0), jr(0.002, 0.05);
+  int planned = 0, trials = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const int n = 2 + static_cast<int>(rng() % 12);
+    std::vector<CapStretch> st;
+    double total = 0.0, lo = 1e300;
+    PathLimits least{0.0, 1e300, 1e300};
+    for (int k = 0; k < n; ++k) {
+      const double a = acc(rng);
+      st.push_back({len(rng), cap(rng), a, a / jr(rng)});
+      total += st.back().length_mm;
+      lo = std::min(lo, st.back().cap_mm_s);
+      least.max_acceleration = std::min(least.max_acceleration, a);
+      least.max_jerk = std::min(least.max_jerk, st.back().max_jerk);
+    }
+    least.max_velocity = lo;
+    const double v0 = lo * std::uniform_real_distribution<double>(0.0, 1.0)(rng);
+    const double v1 = std::min(lo * std::uniform_real_distribution<double>(0.0, 1.0)(rng),
+                               reachable_velocity(v0, total, least));
+    const ScurveProfile flat = plan_scurve(total, v0, v1, least);
+    if (flat.end_velocity() != v1) continue;  // braking to v1 does not fit: not a chain the look-ahead makes
+    ++trials;
+    const PathLimits ceiling{lo, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+    const auto p = plan_chain_profile(st, v0, v1, ceiling, 0.0005, flat.duration());
+    if (!p) continue;
+    ++planned;
+    expect_valid(*p, st, v0, v1, {lo, 3000.0, 3000.0 / 0.002});
+    expect_within_own_limits(*p, st);
+    if (::testing::Test::HasFailure()) {
+      ADD_FAILURE() << "trial " << trial;
+      return;
+    }
+  }
+  EXPECT_GT(planned, 9 * trials / 10);  // it gives up rarely
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // is continuous, corners are slow, tangent junctions are not, and the end is reached exactly.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <kontur/geometry/helix_arc.hpp>
 #include <kontur/geometry/line_segment.hpp>
@@ -294,6 +295,46 @@ TEST(MotionPlanner, ReversalOnAMachineWhoseAccelerationChangesWithinAPeriodKeeps
     EXPECT_LE(a_max, m.axes[0].max_acceleration * (1 + 1e-6)) << "jerk " << m.axes[0].max_jerk;
     EXPECT_EQ(points.back().position[0], 0.0);
   }
+}
+
+}  // namespace
+}  // namespace kontur::plan
+
+namespace kontur::plan {
+namespace {
+
+// Issue 12: chains closed where the caps change (here collinear lines whose feeds rise by 1.75
+// times each) are released through one profile where that is faster: the speed goes on rising
+// through their junctions instead of every chain starting and ending at zero acceleration.
+TEST(MotionPlanner, AccelerationIsCarriedAcrossTheJunctionsOfChainsOfRisingFeeds) {
+  const Machine m = default_machine();
+  const double A = m.axes[0].max_acceleration;
+  std::vector<Move> moves;
+  double x = 0.0, feed = 12.0;
+  const std::array<double, 6> lengths{0.3, 0.15, 0.25, 0.4, 0.7, 1.2};  // [mm]
+  for (int i = 0; i < 6; ++i, feed *= 1.75) {
+    const double len = lengths[static_cast<std::size_t>(i)];
+    moves.push_back(line({x, 0, 0}, {x + len, 0, 0}, feed, i + 1));
+    x += len;
+  }
+  const RunResult r = run(m, moves);
+  const Usage u = usage(r, m);
+  EXPECT_LE(u.v, 1.0 + 1e-6);
+  EXPECT_LE(u.a, 1.0 + 1e-6);
+  EXPECT_LE(u.j, 1.0 + 1e-6);
+  EXPECT_EQ(Vec3(r.points.back().position), Vec3(x, 0, 0));
+  // Where lines 3, 4 and 5 begin (their first setpoint) the speed is still rising hard (each
+  // chain alone starts and ends at zero acceleration: 0.176 s in place of 0.151 s).
+  int carried = 0;
+  for (std::size_t k = 1; k < r.points.size(); ++k)
+    if (r.points[k].source_line != r.points[k - 1].source_line && r.points[k].source_line >= 3 &&
+        r.points[k].source_line <= 5) {
+      EXPECT_GT((r.points[k].v_mm_s - r.points[k - 1].v_mm_s) / m.servo_period_s, 0.25 * A)
+          << "line " << r.points[k].source_line;
+      ++carried;
+    }
+  EXPECT_EQ(carried, 3);
+  EXPECT_LT(r.points.back().t_s, 0.16);
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <kontur/plan/chain_profile.hpp>
 #include <kontur/tolerances.hpp>
@@ -58,38 +59,82 @@ Ease ease(const Kin& x, double max_jerk) {
   return e;
 }
 
+// The smallest of a list's values over a range of its indices, in constant time (a sparse table
+// of the minima over ranges of 1, 2, 4, ... values).
+class RangeMin {
+ public:
+  RangeMin() = default;
+  explicit RangeMin(const std::vector<double>& v) {
+    levels_.push_back(v);
+    for (std::size_t w = 1; 2 * w <= v.size(); w *= 2) {
+      const std::vector<double>& prev = levels_.back();
+      std::vector<double> next(prev.size() - w);
+      for (std::size_t i = 0; i < next.size(); ++i) next[i] = std::min(prev[i], prev[i + w]);
+      levels_.push_back(std::move(next));
+    }
+  }
+  // The smallest over indices first .. last (first <= last).
+  [[nodiscard]] double operator()(std::size_t first, std::size_t last) const {
+    const auto k = static_cast<std::size_t>(std::bit_width(last - first + 1) - 1);
+    return std::min(levels_[k][first], levels_[k][last + 1 - (std::size_t{1} << k)]);
+  }
+
+ private:
+  std::vector<std::vector<double>> levels_;
+};
+
+// The smallest acceleration [mm/s^2] and jerk [mm/s^3] over a run of stretches.
+struct Lim {
+  double a = std::numeric_limits<double>::infinity(), j = std::numeric_limits<double>::infinity();
+  void take(double a_k, double j_k) noexcept {
+    a = std::min(a, a_k);
+    j = std::min(j, j_k);
+  }
+};
+
 class ChainPlanner {
  public:
   // cautious: aim each junction's speed so low that, landing there at zero acceleration, every
   // later junction and the end stay in reach (slower, but it plans chains the other cannot).
   ChainPlanner(std::span<const CapStretch> stretches, double v0, double v1, const PathLimits& limits, bool cautious)
-      : v0_(v0), v1_(v1), a_(limits.max_acceleration), j_(limits.max_jerk) {
+      : v0_(v0), v1_(v1) {
     bounds_.push_back(0.0);
     for (const CapStretch& c : stretches) {
       bounds_.push_back(bounds_.back() + c.length_mm);
       caps_.push_back(c.cap_mm_s);
+      acc_.push_back(std::min(limits.max_acceleration, c.max_acceleration));
+      jerk_.push_back(std::min(limits.max_jerk, c.max_jerk));
     }
     length_ = bounds_.back();
+    min_cap_ = RangeMin(caps_);
+    min_acc_ = RangeMin(acc_);
+    min_jerk_ = RangeMin(jerk_);
     double top = 0.0;
     for (double c : caps_) top = std::max(top, c);
     slack_v_ = tolerances::chain_profile_speed_slack * top;
     junction_speed_.assign(caps_.size() + 1, 0.0);
     junction_speed_[caps_.size()] = v1_;
-    const PathLimits reach{top, a_, j_};
     for (std::size_t m = caps_.size() - 1; m >= 1; --m)
       junction_speed_[m] = std::min(caps_[m - 1], caps_[m]);
     if (cautious)  // backwards: slow enough to brake to the next junction's speed within the stretch
       for (std::size_t m = caps_.size() - 1; m >= 1; --m)
         junction_speed_[m] = std::min(junction_speed_[m], reachable_velocity(junction_speed_[m + 1],
-                                                                             bounds_[m + 1] - bounds_[m], reach));
+                                                                             bounds_[m + 1] - bounds_[m],
+                                                                             {top, acc_[m], jerk_[m]}));
   }
 
   // Smallest cap over the open interval (a, b) of distance [mm].
   [[nodiscard]] double min_cap(double a, double b) const {
-    std::size_t k = stretch_at(a);
-    double c = caps_[k];
-    while (k + 1 < caps_.size() && bounds_[k + 1] < b) c = std::min(c, caps_[++k]);
-    return c;
+    const std::size_t first = stretch_at(a);
+    return min_cap_(first, std::max(first, stretch_ending_at(b)));
+  }
+
+  // Smallest limits over the stretches that [a, b] [mm] touches.
+  [[nodiscard]] Lim limits_over(double a, double b) const { return limits_of(stretch_at(a), stretch_at(b)); }
+
+  // Smallest limits over stretches first .. last.
+  [[nodiscard]] Lim limits_of(std::size_t first, std::size_t last) const {
+    return {min_acc_(first, last), min_jerk_(first, last)};
   }
 
   // The stretch containing distance s (the later one at a boundary).
@@ -102,39 +147,137 @@ class ChainPlanner {
   // (m = caps_.size()), exactly v1.
   [[nodiscard]] double junction_speed(std::size_t m) const { return junction_speed_[m]; }
 
+  // Bringing x's acceleration to zero at the smallest jerk of the stretches the easing runs
+  // through.
+  [[nodiscard]] Ease ease_from(const Kin& x) const {
+    double j = jerk_[stretch_at(x.s)];
+    Ease e = ease(x, j);
+    for (int it = 0; it < tolerances::chain_profile_ease_rounds && e.duration_s > 0.0; ++it) {
+      const double lower = limits_over(x.s, x.s + std::max(0.0, e.distance_mm)).j;
+      if (!(lower < j)) break;
+      j = lower;
+      e = ease(x, j);
+    }
+    return e;
+  }
+
   // The junction after `from` (or the end) with the least room from x, and that room [mm].
   [[nodiscard]] std::pair<std::size_t, double> tightest_after(const Kin& x, const Ease& e, std::size_t from) const {
-    std::size_t bind = caps_.size();
-    double least = room(x, e, bind);
-    for (std::size_t m = from + 1; m < caps_.size(); ++m) {
+    const std::size_t n = caps_.size(), first = stretch_at(x.s);
+    const double end_room = room(x, e, n);
+    std::size_t inner = n;
+    double inner_room = std::numeric_limits<double>::infinity();
+    for (std::size_t m = std::max(first, from) + 1; m < n; ++m) {
+      const double w = junction_speed(m);
+      if (e.v_end <= w) continue;  // (no braking for it)
+      // (at the smallest limits up to it the room is smaller still: where even that is not the
+      // least, the junction is not)
+      const Lim upto = limits_of(first, m - 1);
+      if (bounds_[m] - x.s - e.distance_mm - velocity_change_distance(e.v_end, w, upto.a, upto.j) >=
+          std::min(inner_room, end_room))
+        continue;
       const double r = room(x, e, m);
-      if (r < least) {
-        least = r;
-        bind = m;
+      if (r < inner_room) {
+        inner_room = r;
+        inner = m;
       }
     }
-    return {bind, least};
+    if (inner_room < end_room) return {inner, inner_room};
+    return {n, end_room};
   }
 
   // Room left [mm] for the manoeuvre from x towards junction m (speed at most junction_speed(m)
-  // there) or the end (speed exactly v1); negative if it no longer fits; +infinity if that
-  // junction does not ask for braking.
+  // there) or the end (speed exactly v1), its S-curve at the smallest limits of the stretches it
+  // runs through; negative if it no longer fits; +infinity if that junction does not ask for it.
   [[nodiscard]] double room(const Kin& x, const Ease& e, std::size_t m) const {
     const bool end = m == caps_.size();
-    const double w = junction_speed(m);
-    if (!end && e.v_end <= w) return std::numeric_limits<double>::infinity();
-    return bounds_[m] - x.s - e.distance_mm - velocity_change_distance(e.v_end, w, a_, j_);
+    const double w = landing_speed(m, e.v_end), dist = bounds_[m] - x.s, from = x.s + e.distance_mm;
+    if (e.v_end > w)
+      return dist - e.distance_mm - change_distance(from, bounds_[m], e.v_end, w);
+    if (e.v_end < w) {
+      // speeding up to it: only once no smaller cap lies between (that one binds first)
+      if (min_cap(x.s, bounds_[m]) + slack_v_ < w) return std::numeric_limits<double>::infinity();
+      return dist - e.distance_mm - change_distance(from, bounds_[m], e.v_end, w);
+    }
+    return end ? dist - e.distance_mm : std::numeric_limits<double>::infinity();
+  }
+
+  // The smallest limits over the stretches that one S-curve change of speed from v to w [mm/s]
+  // between distances from and to [mm] runs through: braking, it cruises first and brakes at the
+  // end; speeding up, it speeds up first and cruises after.
+  [[nodiscard]] Lim change_limits(double from, double to, double v, double w) const {
+    const bool braking = v > w;
+    const std::size_t k0 = braking ? stretch_ending_at(to) : stretch_at(from);
+    Lim l{acc_[k0], jerk_[k0]};
+    for (int it = 0; it < tolerances::chain_profile_ease_rounds; ++it) {
+      const double d = velocity_change_distance(v, w, l.a, l.j);
+      const Lim over = braking ? limits_inside(std::max(from, to - d), to) : limits_inside(from, std::min(to, from + d));
+      if (!(over.a < l.a) && !(over.j < l.j)) return l;
+      l.take(over.a, over.j);
+    }
+    return limits_inside(from, to);
+  }
+
+  // Its distance [mm].
+  [[nodiscard]] double change_distance(double from, double to, double v, double w) const {
+    const Lim l = change_limits(from, to, v, w);
+    return velocity_change_distance(v, w, l.a, l.j);
+  }
+
+  // Smallest limits over the stretches that the interval (a, b) [mm] runs through.
+  [[nodiscard]] Lim limits_inside(double a, double b) const {
+    const std::size_t last = stretch_ending_at(b);
+    return limits_of(std::min(stretch_at(a), last), last);
+  }
+
+  // The stretch whose part up to distance s contains it (the earlier one at a junction).
+  [[nodiscard]] std::size_t stretch_ending_at(double s) const {
+    const auto it = std::lower_bound(bounds_.begin() + 1, bounds_.end() - 1, s);
+    return static_cast<std::size_t>(it - (bounds_.begin() + 1));
+  }
+
+  // The speed [mm/s] a manoeuvre arriving at junction m from speed v lands at: the junction's
+  // speed where v is above it; at the end, exactly v1.
+  [[nodiscard]] double landing_speed(std::size_t m, double v) const {
+    return m == caps_.size() ? v1_ : std::min(v, junction_speed_[m]);
+  }
+
+  // True if x's acceleration may be eased to zero: it does not run, with more acceleration than
+  // allowed there, into a stretch of a smaller acceleration limit.
+  [[nodiscard]] bool ease_fits(const Kin& x, const Ease& e) const {
+    const std::size_t first = stretch_at(x.s);
+    if (std::abs(x.a) > acc_[first] * (1.0 + 1e-9)) return false;
+    for (std::size_t k = first + 1; k < caps_.size() && bounds_[k] < x.s + e.distance_mm; ++k)
+      if (std::abs(x.a) > acc_[k]) return false;
+    return true;
   }
 
   // True if from x every junction ahead and the end can still be met.
   [[nodiscard]] bool safe(const Kin& x) const {
-    const Ease e = ease(x, j_);
+    const Ease e = ease_from(x);
     if (e.v_end < 0.0) return false;
     if (std::max(x.v, e.v_end) > min_cap(x.s, x.s + e.distance_mm) + slack_v_) return false;
-    const double reach = e.distance_mm + 2.0 * velocity_change_distance(e.v_end, 0.0, a_, j_);
-    for (std::size_t m = stretch_at(x.s) + 1; m < caps_.size() && bounds_[m] - x.s <= reach; ++m)
+    if (!ease_fits(x, e)) return false;
+    const std::size_t end = caps_.size(), first = stretch_at(x.s);
+    const Lim least = limits_of(first, end - 1);
+    // (beyond this, even at the smallest limits ahead, braking to a stop fits before the junction)
+    const double reach = e.distance_mm + 2.0 * velocity_change_distance(e.v_end, 0.0, least.a, least.j);
+    for (std::size_t m = first + 1; m < end && bounds_[m] - x.s <= reach; ++m) {
+      const double w = junction_speed(m);
+      if (e.v_end <= w) continue;
+      // (braking at the smallest limits up to it fits: no need to find the stretches it runs through)
+      const Lim upto = limits_of(first, m - 1);
+      if (bounds_[m] - x.s - e.distance_mm - velocity_change_distance(e.v_end, w, upto.a, upto.j) >= 0.0) continue;
       if (room(x, e, m) < 0.0) return false;
-    return room(x, e, caps_.size()) >= 0.0;
+    }
+    // the end, which must be met exactly, is always looked at: speeding up to it may take longer
+    // than stopping
+    const Lim all = limits_of(first, end - 1);
+    if (bounds_[end] - x.s - e.distance_mm - velocity_change_distance(e.v_end, v1_, all.a, all.j) >= 0.0 &&
+        !(e.v_end < v1_))
+      return true;
+    return room(x, e, end) >= 0.0;
+    return true;
   }
 
   // The profile, or none if the steps ran out or the check failed.
@@ -149,10 +292,23 @@ class ChainPlanner {
     for (;;) {
       if (++steps > max_steps) return std::nullopt;
       bool moved = false;
-      for (const double want : {j_, 0.0, -j_}) {
-        const double j = std::clamp(want, (-a_ - x.a) / dt, (a_ - x.a) / dt);
-        const Kin y = advance(x, j, dt);
-        if (!(y.s < length_) || !(y.s > x.s)) continue;
+      for (const double want : {1.0, 0.0, -1.0}) {
+        // the limits of the stretch it is in, then of all the stretches the step runs through
+        Lim l{acc_[stretch_at(x.s)], jerk_[stretch_at(x.s)]};
+        Kin y;
+        double j = 0.0;
+        bool within = false;
+        for (int round = 0; round < 2 && !within; ++round) {
+          if (std::abs(x.a) > l.a) break;
+          j = std::clamp(want * l.j, (-l.a - x.a) / dt, (l.a - x.a) / dt);
+          y = advance(x, j, dt);
+          if (!(y.s > x.s)) break;
+          const Lim span = limits_over(x.s, y.s);
+          within = !(std::abs(x.a) > span.a) && !(std::abs(y.a) > span.a * (1.0 + 1e-12)) &&
+                   !(std::abs(j) > span.j * (1.0 + 1e-12));
+          l = span;
+        }
+        if (!within || !(y.s < length_) || !(y.s > x.s)) continue;
         const SpeedRange r = speed_range(x, j, dt, y);
         if (r.lo < 0.0 || r.hi > min_cap(x.s, y.s) + slack_v_ || !safe(y)) continue;
         phases.push_back({t, {x.s, x.v, x.a, j}, j});
@@ -165,11 +321,12 @@ class ChainPlanner {
       // No step is safe: carry out the manoeuvre towards the junction that binds. It lands there
       // at zero acceleration; where a later junction could no longer be met from that landing,
       // it aims at that one instead (passing the first below its cap, as fits() checks).
-      const Ease e = ease(x, j_);
-      std::size_t bind = tightest_after(x, e, stretch_at(x.s)).first;
+      const Ease e = ease_from(x);
+      const std::size_t from = stretch_at(x.s);
+      std::size_t bind = tightest_after(x, e, from).first;
       while (bind < caps_.size()) {
-        const Kin land{bounds_[bind], junction_speed(bind), 0.0};
-        const auto [next, r] = tightest_after(land, ease(land, j_), bind);
+        const Kin land{bounds_[bind], landing_speed(bind, e.v_end), 0.0};
+        const auto [next, r] = tightest_after(land, ease_from(land), bind);
         if (!(r < 0.0)) break;
         bind = next;
       }
@@ -179,13 +336,26 @@ class ChainPlanner {
         x = advance(x, e.jerk, e.duration_s);
         x.a = 0.0;
       }
+      // One S-curve to the junction, at the smallest limits from x to it (as it was judged); where
+      // it would pass a junction before it too fast, it aims at that one instead.
+      ScurveProfile c;
+      double w = 0.0;
+      for (;;) {
+        w = landing_speed(bind, x.v);
+        const Lim l = change_limits(x.s, bounds_[bind], x.v, w);
+        const double dist = bounds_[bind] - x.s;
+        if (!(dist >= 0.0) || x.v < 0.0) return std::nullopt;
+        const PathLimits pl{std::max({x.v, w, x.v > slack_v_ ? 0.0 : cap_all}), l.a, l.j};
+        c = plan_scurve(dist, x.v, w, pl);
+        if (!(std::abs(c.end_velocity() - w) <= slack_v_)) return std::nullopt;
+        std::size_t over = bind;
+        for (std::size_t m = stretch_at(x.s) + 1; m < bind && over == bind; ++m)
+          if (c.sample(c.time_at(bounds_[m] - x.s)).v > junction_speed(m) + slack_v_) over = m;
+        if (over == bind) break;
+        bind = over;
+      }
       const bool end = bind == caps_.size();
-      const double w = junction_speed(bind);
-      const double target = bounds_[bind], dist = target - x.s;
-      if (!(dist >= 0.0) || x.v < 0.0) return std::nullopt;
-      PathLimits l{std::max({x.v, w, x.v > slack_v_ ? 0.0 : cap_all}), a_, j_};
-      const ScurveProfile c = plan_scurve(dist, x.v, w, l);
-      if (!(std::abs(c.end_velocity() - w) <= slack_v_)) return std::nullopt;
+      const double target = bounds_[bind];
       trajectory::append_phases(c, t, x.s, phases);
       t += c.duration();
       x = {target, w, 0.0};
@@ -195,31 +365,35 @@ class ChainPlanner {
     return trajectory::PathProfile(std::move(phases), t, {length_, v1_, 0.0, 0.0});
   }
 
-  // Every phase below the cap of each stretch it runs through, over the part of it inside that
-  // stretch (a phase that ends or starts on a junction counts only to the stretches it runs
-  // inside; a braking phase may cross into a lower cap once its speed is below it), the speed
-  // never negative.
+  // Every phase within the cap, acceleration and jerk limits of each stretch it runs through, over
+  // the part of it inside that stretch (a phase that ends or starts on a junction counts only to
+  // the stretches it runs inside; a braking phase may cross into a lower cap once its speed is
+  // below it), the speed never negative.
   [[nodiscard]] bool fits(const std::vector<ProfilePhase>& phases, double duration_s) const {
     const double ds = tolerances::chain_profile_boundary_mm;
+    const auto within = [&](std::size_t m, const Kin& a, const Kin& b, double jerk) {
+      return !(std::abs(a.a) > acc_[m] * (1.0 + 1e-9)) && !(std::abs(b.a) > acc_[m] * (1.0 + 1e-9)) &&
+             !(std::abs(jerk) > jerk_[m] * (1.0 + 1e-9));
+    };
     for (std::size_t k = 0; k < phases.size(); ++k) {
       const ProfilePhase& p = phases[k];
       const double dt = (k + 1 < phases.size() ? phases[k + 1].t0_s : duration_s) - p.t0_s;
       const Kin x{p.start.s, p.start.v, p.start.a};
       const Kin y = advance(x, p.jerk, dt);
       const SpeedRange r = speed_range(x, p.jerk, dt, y);
-      if (r.lo < -slack_v_ || std::abs(x.a) > a_ * (1.0 + 1e-9) || std::abs(p.jerk) > j_ * (1.0 + 1e-9)) return false;
+      if (r.lo < -slack_v_) return false;
       const double lo = std::min(x.s + ds, 0.5 * (x.s + y.s)), hi = std::max(y.s - ds, 0.5 * (x.s + y.s));
       const std::size_t first = stretch_at(lo), last = stretch_at(hi);
       if (first == last) {
-        if (r.hi > caps_[first] + slack_v_) return false;
+        if (r.hi > caps_[first] + slack_v_ || !within(first, x, y, p.jerk)) return false;
         continue;
       }
-      // Crossing junctions: each part against its own stretch's cap.
+      // Crossing junctions: each part against its own stretch's cap and limits.
       double t_a = 0.0;
       for (std::size_t m = first; m <= last; ++m) {
         const double t_b = m == last ? dt : crossing_time(x, p.jerk, dt, bounds_[m + 1]);
         const Kin a = advance(x, p.jerk, t_a), b = advance(x, p.jerk, t_b);
-        if (speed_range(a, p.jerk, t_b - t_a, b).hi > caps_[m] + slack_v_) return false;
+        if (speed_range(a, p.jerk, t_b - t_a, b).hi > caps_[m] + slack_v_ || !within(m, a, b, p.jerk)) return false;
         t_a = t_b;
       }
     }
@@ -239,8 +413,9 @@ class ChainPlanner {
   }
 
  private:
-  double v0_, v1_, a_, j_;
-  std::vector<double> bounds_, caps_, junction_speed_;  // junction_speed_[m]: at bounds_[m], m >= 1
+  double v0_, v1_;
+  std::vector<double> bounds_, caps_, acc_, jerk_, junction_speed_;  // junction_speed_[m]: at bounds_[m], m >= 1
+  RangeMin min_cap_, min_acc_, min_jerk_;  // over ranges of stretches
   double length_ = 0.0, slack_v_ = 0.0;
 };
 

@@ -393,11 +393,22 @@ void MotionPlanner::Chain::count(const Piece& p, bool first) noexcept {
   own_time_s = (first ? 0.0 : own_time_s) + (cap > 0.0 ? p.length_mm / cap : 0.0);
 }
 
-std::vector<CapStretch> MotionPlanner::stretches_of(const Chain& chain) {
-  std::vector<CapStretch> stretches;
-  stretches.reserve(chain.pieces.size());
-  for (const Piece& p : chain.pieces) stretches.push_back({p.length_mm, p.limits.max_velocity});
-  return stretches;
+void MotionPlanner::append_stretches(const Chain& chain, std::vector<CapStretch>& out) {
+  for (const Piece& p : chain.pieces)
+    out.push_back({p.length_mm, p.limits.max_velocity, p.limits.max_acceleration, p.limits.max_jerk});
+}
+
+std::optional<trajectory::PathProfile> MotionPlanner::following_profile(std::span<const CapStretch> stretches,
+                                                                        double v0, double v1, const PathLimits& least,
+                                                                        double time_bound_s) const {
+  // Steps of at most a servo period, a quarter of the time the jerk takes to build up the
+  // acceleration, at least an eighth of a period.
+  const double ramp_s = least.max_acceleration / least.max_jerk;
+  const double step = std::clamp(0.25 * ramp_s, period_ / 8.0, period_);
+  // (each stretch at its own acceleration and jerk)
+  const PathLimits ceiling{least.max_velocity, std::numeric_limits<double>::infinity(),
+                           std::numeric_limits<double>::infinity()};
+  return plan_chain_profile(stretches, v0, v1, ceiling, step, time_bound_s);
 }
 
 trajectory::PathProfile MotionPlanner::chain_profile(const Chain& chain, const ScurveProfile& planned) const {
@@ -416,12 +427,10 @@ trajectory::PathProfile MotionPlanner::chain_profile(const Chain& chain, const S
   if (const AccelerationBands bands = chain_bands(chain); bands.n > 0)
     consider(plan_banded_profile(chain.length_mm, planned.start_velocity(), planned.end_velocity(), bands));
   if (chain.max_cap_mm_s > chain.min_cap_mm_s) {
-    // Steps of at most a servo period, a quarter of the time the jerk takes to build up the
-    // acceleration, at least an eighth of a period.
-    const double ramp_s = chain.limits.max_acceleration / chain.limits.max_jerk;
-    const double step = std::clamp(0.25 * ramp_s, period_ / 8.0, period_);
-    consider(plan_chain_profile(stretches_of(chain), planned.start_velocity(), planned.end_velocity(), chain.limits,
-                                step, planned.duration()));
+    std::vector<CapStretch> stretches;
+    append_stretches(chain, stretches);
+    consider(following_profile(stretches, planned.start_velocity(), planned.end_velocity(), chain.limits,
+                               planned.duration()));
   }
   return best ? std::move(*best) : trajectory::PathProfile(planned);
 }
@@ -496,6 +505,7 @@ void MotionPlanner::close_chain(double end_velocity) {
   }
   mc.max_end_velocity = std::min(mc.limits.max_velocity, end_velocity);
   open_.limits = mc.limits;
+  open_.smooth_end = std::isinf(end_velocity);
   lookahead_.push(mc);
   pending_.push_back(std::move(open_));
   open_ = Chain{};
@@ -533,23 +543,78 @@ void MotionPlanner::release_ready() {
   while (lookahead_.ready()) {
     Chain chain = std::move(pending_.front());
     pending_.pop_front();
-    const trajectory::PathProfile profile = chain_profile(chain, lookahead_.pop());
-    // Each piece runs through its window of the chain's profile.
-    double offset = 0.0, t0 = 0.0;
-    for (std::size_t k = 0; k < chain.pieces.size(); ++k) {
-      trajectory::Segment& seg = chain.pieces[k].segment;
-      const double next = offset + chain.pieces[k].length_mm;
-      const double t1 = k + 1 == chain.pieces.size() ? profile.duration() : std::max(t0, profile.time_at(next));
-      seg.profile = profile;
-      seg.window_t0_s = t0;
-      seg.window_t1_s = t1;
-      seg.window_s0_mm = offset;
-      out_->append(std::move(seg));
-      offset = next;
-      t0 = t1;
+    // (one profile over chains of much smaller and larger acceleration is rarely faster)
+    if (!held_.empty()) {
+      const double a = chain.limits.max_acceleration, held_a = held_.front().chain.limits.max_acceleration;
+      if (a > tolerances::plan_held_acceleration_ratio * held_a || held_a > tolerances::plan_held_acceleration_ratio * a)
+        release_held();
+    }
+    const bool joins_next = chain.smooth_end;
+    held_pieces_ += chain.pieces.size();
+    held_.push_back({std::move(chain), lookahead_.pop()});
+    if (!joins_next || held_pieces_ >= tolerances::plan_held_max_pieces) release_held();
+  }
+  if (finished_ && pending_.empty() && open_.pieces.empty()) {
+    release_held();
+    out_->close();
+  }
+}
+
+void MotionPlanner::release_held() {
+  if (held_.empty()) return;
+  // Each chain's own profile, between the look-ahead's speeds at its ends ...
+  std::vector<trajectory::PathProfile> own;
+  own.reserve(held_.size());
+  double own_s = 0.0, planned_s = 0.0;  // [s]
+  for (const Planned& p : held_) {
+    own.push_back(chain_profile(p.chain, p.planned));
+    own_s += own.back().duration();
+    planned_s += p.planned.duration();
+  }
+  // ... or one over all of them, carrying the acceleration across the junctions between them,
+  // where that is faster.
+  std::optional<trajectory::PathProfile> whole;
+  if (held_.size() > 1) {
+    std::vector<CapStretch> stretches;
+    PathLimits least = held_.front().chain.limits;
+    for (const Planned& p : held_) {
+      append_stretches(p.chain, stretches);
+      least.max_velocity = std::min(least.max_velocity, p.chain.limits.max_velocity);
+      least.max_acceleration = std::min(least.max_acceleration, p.chain.limits.max_acceleration);
+      least.max_jerk = std::min(least.max_jerk, p.chain.limits.max_jerk);
+    }
+    whole = following_profile(stretches, held_.front().planned.start_velocity(), held_.back().planned.end_velocity(),
+                              least, planned_s);
+    if (whole && !(whole->duration() < own_s)) whole.reset();
+  }
+  double offset = 0.0, t0 = 0.0;  // along the whole profile [mm], [s]
+  for (std::size_t k = 0; k < held_.size(); ++k) {
+    if (whole) {
+      release_chain(held_[k].chain, *whole, offset, t0, k + 1 == held_.size());
+    } else {
+      double own_offset = 0.0, own_t0 = 0.0;
+      release_chain(held_[k].chain, own[k], own_offset, own_t0, true);
     }
   }
-  if (finished_ && pending_.empty() && open_.pieces.empty()) out_->close();
+  held_.clear();
+  held_pieces_ = 0;
+}
+
+void MotionPlanner::release_chain(Chain& chain, const trajectory::PathProfile& profile, double& offset, double& t0,
+                                  bool last) {
+  // Each piece runs through its window of the profile.
+  for (std::size_t k = 0; k < chain.pieces.size(); ++k) {
+    trajectory::Segment& seg = chain.pieces[k].segment;
+    const double next = offset + chain.pieces[k].length_mm;
+    const double t1 = last && k + 1 == chain.pieces.size() ? profile.duration() : std::max(t0, profile.time_at(next));
+    seg.profile = profile;
+    seg.window_t0_s = t0;
+    seg.window_t1_s = t1;
+    seg.window_s0_mm = offset;
+    out_->append(std::move(seg));
+    offset = next;
+    t0 = t1;
+  }
 }
 
 }  // namespace kontur::plan

@@ -78,6 +78,7 @@ class MotionPlanner {
     double length_mm = 0.0;    // of its pieces
     double own_time_s = 0.0;   // each piece's length at its own cap, summed
     PathLimits limits;  // what the look-ahead planned it with (set when closed)
+    bool smooth_end = false;  // the next chain continues it smoothly (it was closed for its caps)
     // Takes a piece's cap, length and time at its cap into the figures above (`first`: they
     // start anew with it).
     void count(const Piece& p, bool first) noexcept;
@@ -88,7 +89,13 @@ class MotionPlanner {
   // that, the profile under the chain's speed bands (plan/banded_profile.hpp) and, where its
   // pieces' caps differ, one that follows them (plan/chain_profile.hpp).
   [[nodiscard]] trajectory::PathProfile chain_profile(const Chain& chain, const ScurveProfile& planned) const;
-  [[nodiscard]] static std::vector<CapStretch> stretches_of(const Chain& chain);
+  // Appends the chain's pieces as stretches, each with its own cap and limits.
+  static void append_stretches(const Chain& chain, std::vector<CapStretch>& out);
+  // The profile that follows each stretch's cap and limits from v0 to v1 [mm/s] (none where it
+  // cannot be planned), stepped at a share of the ramp time of `least`, the smallest limits.
+  [[nodiscard]] std::optional<trajectory::PathProfile> following_profile(std::span<const CapStretch> stretches,
+                                                                         double v0, double v1, const PathLimits& least,
+                                                                         double time_bound_s) const;
   // The chain's speed bands up to its smallest cap (none where its pieces are lines).
   [[nodiscard]] AccelerationBands chain_bands(const Chain& chain) const;
   // The open chain's last piece gets its end junction's share; its limits become final.
@@ -97,13 +104,27 @@ class MotionPlanner {
   [[nodiscard]] PathLimits piece_limits(const Piece& piece, double share, bool end_smooth) const;
   // Closes the open chain (its end speed at most `end_velocity`) and hands it to the look-ahead.
   void close_chain(double end_velocity);
+  // Hands the chains whose profiles are final to the trajectory, holding those that join the next
+  // smoothly until that one's is final too.
   void release_ready();
+  // Releases the held chains: each through its own profile, or all through one profile where that
+  // is faster.
+  void release_held();
+  // Appends the pieces of `chain` to the trajectory, running through `profile` from distance
+  // offset [mm] and time t0 [s].
+  void release_chain(Chain& chain, const trajectory::PathProfile& profile, double& offset, double& t0, bool last);
 
   Machine machine_;
   double period_;
   trajectory::Trajectory* out_;
   Lookahead lookahead_;
   std::deque<Chain> pending_;            // closed chains in the look-ahead window, in order
+  struct Planned {
+    Chain chain;
+    ScurveProfile planned;  // the look-ahead's
+  };
+  std::vector<Planned> held_;            // chains out of the look-ahead, each joining the next smoothly
+  std::size_t held_pieces_ = 0;          // their pieces
   Chain open_;                           // the chain being built (its last piece's end not yet known)
   std::optional<Derivatives> last_end_;  // end of the last move pushed (for the junction)
   ExtraAxes last_rate_{};                // its extra axes' rates dq/ds (signed)
