@@ -54,10 +54,10 @@ ValidatedProgram validate_program(const std::string& path, const ReaderOptions& 
     if (!v.kept_blocks) continue;
     kept_bytes += block_bytes(b);
     if (kept_bytes <= tolerances::gcode_kept_blocks_bytes) {
-      v.blocks.push_back(b);
+      v.blocks.push_back(std::move(b));  // (next() assigns it anew)
     } else {  // too long to keep: the second pass reads it again
       v.kept_blocks = false;
-      std::vector<Block>().swap(v.blocks);
+      std::deque<Block>().swap(v.blocks);
     }
   }
   v.dialect = validate.dialect();

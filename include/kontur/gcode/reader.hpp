@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstddef>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -117,8 +118,9 @@ struct ValidatedProgram {
   ReaderOptions options;  ///< with the dialect the first pass read it in
   DialectChoice dialect;  ///< that dialect, and why
   /// The first pass's blocks, when they fit in tolerances::gcode_kept_blocks_bytes (kept_blocks
-  /// true): the second pass hands them on instead of reading the program again.
-  std::vector<Block> blocks;
+  /// true): the second pass hands them on instead of reading the program again. (A deque: kept
+  /// as they come, none copied again as it grows.)
+  std::deque<Block> blocks;
   bool kept_blocks = false;
 };
 
