@@ -352,13 +352,16 @@ inline constexpr int chain_profile_ease_rounds = 4;
 inline constexpr std::size_t plan_chain_max_pieces = 256;
 /// Chains that join smoothly (closed for their caps, not at a corner) are held and released
 /// through one profile over all of them where that is faster than each through its own (their
-/// junctions then carry the acceleration). The choice is all or nothing, so a run is released
-/// after at most plan_held_max_pieces pieces, and before a chain whose smallest path acceleration
-/// differs from the run's first by more than plan_held_acceleration_ratio. On 3D_Chips (XYZ.ini)
-/// 256 pieces and a ratio of 4 gave 62.9 s, 24 and 2 give 62.5 s (each chain alone: 63.8 s); 12 or
-/// 16 pieces, or a ratio of 1.5, are slower again.
+/// junctions then carry the acceleration); where it is not, each half of them (of at least
+/// plan_held_split_chains chains) is looked at the same way. A run is released after at most
+/// plan_held_max_pieces pieces, and before a chain whose smallest path acceleration differs from
+/// the run's first by more than plan_held_acceleration_ratio. On performance/3D_Chips (XYZ.ini),
+/// without halves: 256 pieces and a ratio of 4 gave 62.9 s, 24 and 2 62.5 s (each chain alone:
+/// 63.8 s; 12 or 16 pieces, or a ratio of 1.5, slower again); with halves 62.42 s (64 pieces and
+/// halves from 4 chains: 62.37 s, but 3D_Chips and random_lines slower).
 inline constexpr std::size_t plan_held_max_pieces = 24;
 inline constexpr double plan_held_acceleration_ratio = 2.0;
+inline constexpr std::size_t plan_held_split_chains = 2;
 
 // ---- smoothing of dense G01 within the G64 tolerance (program/line_smoother.hpp, geometry/polyline_fit.hpp)
 /// A run of lines is smoothed only where consecutive lines turn by at most 30 degrees (cosine of

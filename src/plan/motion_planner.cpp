@@ -565,39 +565,63 @@ void MotionPlanner::release_held() {
   // Each chain's own profile, between the look-ahead's speeds at its ends ...
   std::vector<trajectory::PathProfile> own;
   own.reserve(held_.size());
-  double own_s = 0.0, planned_s = 0.0;  // [s]
-  for (const Planned& p : held_) {
-    own.push_back(chain_profile(p.chain, p.planned));
-    own_s += own.back().duration();
-    planned_s += p.planned.duration();
-  }
-  // ... or one over all of them, carrying the acceleration across the junctions between them,
-  // where that is faster.
-  std::optional<trajectory::PathProfile> whole;
-  if (held_.size() > 1) {
-    std::vector<CapStretch> stretches;
-    PathLimits least = held_.front().chain.limits;
-    for (const Planned& p : held_) {
-      append_stretches(p.chain, stretches);
-      least.max_velocity = std::min(least.max_velocity, p.chain.limits.max_velocity);
-      least.max_acceleration = std::min(least.max_acceleration, p.chain.limits.max_acceleration);
-      least.max_jerk = std::min(least.max_jerk, p.chain.limits.max_jerk);
-    }
-    whole = following_profile(stretches, held_.front().planned.start_velocity(), held_.back().planned.end_velocity(),
-                              least, planned_s);
-    if (whole && !(whole->duration() < own_s)) whole.reset();
-  }
-  double offset = 0.0, t0 = 0.0;  // along the whole profile [mm], [s]
-  for (std::size_t k = 0; k < held_.size(); ++k) {
-    if (whole) {
-      release_chain(held_[k].chain, *whole, offset, t0, k + 1 == held_.size());
+  for (const Planned& p : held_) own.push_back(chain_profile(p.chain, p.planned));
+  // ... or, over runs of them, one profile carrying the acceleration across their junctions.
+  std::vector<Run> runs;
+  fastest_runs(0, held_.size(), own, runs);
+  for (Run& r : runs) {
+    if (r.profile) {
+      double offset = 0.0, t0 = 0.0;  // along the run's profile [mm], [s]
+      for (std::size_t k = r.first; k < r.last; ++k) release_chain(held_[k].chain, *r.profile, offset, t0, k + 1 == r.last);
     } else {
-      double own_offset = 0.0, own_t0 = 0.0;
-      release_chain(held_[k].chain, own[k], own_offset, own_t0, true);
+      for (std::size_t k = r.first; k < r.last; ++k) {
+        double offset = 0.0, t0 = 0.0;
+        release_chain(held_[k].chain, own[k], offset, t0, true);
+      }
     }
   }
   held_.clear();
   held_pieces_ = 0;
+}
+
+double MotionPlanner::fastest_runs(std::size_t first, std::size_t last, const std::vector<trajectory::PathProfile>& own,
+                                   std::vector<Run>& out) const {
+  double own_s = 0.0, planned_s = 0.0;  // [s]
+  for (std::size_t k = first; k < last; ++k) {
+    own_s += own[k].duration();
+    planned_s += held_[k].planned.duration();
+  }
+  std::optional<trajectory::PathProfile> whole;
+  if (last - first > 1) {
+    std::vector<CapStretch> stretches;
+    PathLimits least = held_[first].chain.limits;
+    for (std::size_t k = first; k < last; ++k) {
+      const Chain& c = held_[k].chain;
+      append_stretches(c, stretches);
+      least.max_velocity = std::min(least.max_velocity, c.limits.max_velocity);
+      least.max_acceleration = std::min(least.max_acceleration, c.limits.max_acceleration);
+      least.max_jerk = std::min(least.max_jerk, c.limits.max_jerk);
+    }
+    whole = following_profile(stretches, held_[first].planned.start_velocity(), held_[last - 1].planned.end_velocity(),
+                              least, planned_s);
+  }
+  const double whole_s = whole ? whole->duration() : own_s;
+  // Where one profile over all is not faster, each half the fastest way.
+  if (!(whole_s < own_s) && last - first >= tolerances::plan_held_split_chains) {
+    std::vector<Run> halves;
+    const std::size_t mid = first + (last - first) / 2;
+    const double halves_s = fastest_runs(first, mid, own, halves) + fastest_runs(mid, last, own, halves);
+    if (halves_s < own_s) {
+      for (Run& r : halves) out.push_back(std::move(r));
+      return halves_s;
+    }
+  }
+  if (whole && whole_s < own_s) {
+    out.push_back({first, last, std::move(whole)});
+    return whole_s;
+  }
+  out.push_back({first, last, std::nullopt});
+  return own_s;
 }
 
 void MotionPlanner::release_chain(Chain& chain, const trajectory::PathProfile& profile, double& offset, double& t0,

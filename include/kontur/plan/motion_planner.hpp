@@ -107,9 +107,18 @@ class MotionPlanner {
   // Hands the chains whose profiles are final to the trajectory, holding those that join the next
   // smoothly until that one's is final too.
   void release_ready();
-  // Releases the held chains: each through its own profile, or all through one profile where that
-  // is faster.
+  // Releases the held chains: each through its own profile, or runs of them through one profile
+  // where that is faster.
   void release_held();
+  // Held chains first .. last - 1: through one profile, or each through its own.
+  struct Run {
+    std::size_t first = 0, last = 0;
+    std::optional<trajectory::PathProfile> profile;  // none: each through its own
+  };
+  // The fastest way to run held chains first .. last - 1 (all through one profile, each through
+  // its own, or where neither wins, each half the fastest way), appended to `out`; its time [s].
+  double fastest_runs(std::size_t first, std::size_t last, const std::vector<trajectory::PathProfile>& own,
+                      std::vector<Run>& out) const;
   // Appends the pieces of `chain` to the trajectory, running through `profile` from distance
   // offset [mm] and time t0 [s].
   void release_chain(Chain& chain, const trajectory::PathProfile& profile, double& offset, double& t0, bool last);
