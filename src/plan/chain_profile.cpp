@@ -170,12 +170,8 @@ class ChainPlanner {
     for (std::size_t m = std::max(first, from) + 1; m < n; ++m) {
       const double w = junction_speed(m);
       if (e.v_end <= w) continue;  // (no braking for it)
-      // (at the smallest limits up to it the room is smaller still: where even that is not the
-      // least, the junction is not)
-      const Lim upto = limits_of(first, m - 1);
-      if (bounds_[m] - x.s - e.distance_mm - velocity_change_distance(e.v_end, w, upto.a, upto.j) >=
-          std::min(inner_room, end_room))
-        continue;
+      // (where even the room at the smallest limits up to it is not the least, the junction is not)
+      if (room_at_least(x, e, m, w) >= std::min(inner_room, end_room)) continue;
       const double r = room(x, e, m);
       if (r < inner_room) {
         inner_room = r;
@@ -266,18 +262,20 @@ class ChainPlanner {
       const double w = junction_speed(m);
       if (e.v_end <= w) continue;
       // (braking at the smallest limits up to it fits: no need to find the stretches it runs through)
-      const Lim upto = limits_of(first, m - 1);
-      if (bounds_[m] - x.s - e.distance_mm - velocity_change_distance(e.v_end, w, upto.a, upto.j) >= 0.0) continue;
+      if (room_at_least(x, e, m, w) >= 0.0) continue;
       if (room(x, e, m) < 0.0) return false;
     }
     // the end, which must be met exactly, is always looked at: speeding up to it may take longer
     // than stopping
-    const Lim all = limits_of(first, end - 1);
-    if (bounds_[end] - x.s - e.distance_mm - velocity_change_distance(e.v_end, v1_, all.a, all.j) >= 0.0 &&
-        !(e.v_end < v1_))
-      return true;
+    if (!(e.v_end < v1_) && room_at_least(x, e, end, v1_) >= 0.0) return true;
     return room(x, e, end) >= 0.0;
-    return true;
+  }
+
+  // A lower bound on the room [mm] for braking from x to speed w at junction m: at the smallest
+  // limits of all the stretches from x to it (room() finds those the braking runs through).
+  [[nodiscard]] double room_at_least(const Kin& x, const Ease& e, std::size_t m, double w) const {
+    const Lim upto = limits_of(stretch_at(x.s), m - 1);
+    return bounds_[m] - x.s - e.distance_mm - velocity_change_distance(e.v_end, w, upto.a, upto.j);
   }
 
   // The profile, or none if the steps ran out or the check failed.
