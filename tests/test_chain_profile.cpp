@@ -245,5 +245,102 @@ TEST(ChainProfile, SeededRandomChainsKeepEachStretchsOwnLimits) {
   EXPECT_GT(planned, 9 * trials / 10);  // it gives up rarely
 }
 
+// Every sample within the limits of its stretch at its cap, or within the stretch's speed band
+// for its speed (band acceleration and the bands' jerk); at a junction, of either stretch.
+void expect_within_own_bands(const PathProfile& p, const std::vector<CapStretch>& st) {
+  std::vector<double> bounds{0.0};
+  for (const CapStretch& c : st) bounds.push_back(bounds.back() + c.length_mm);
+  const auto allows = [&](const CapStretch& c, const trajectory::PathState& x) {
+    const bool at_cap = std::abs(x.a) <= c.max_acceleration * (1 + 1e-9) && std::abs(x.j) <= c.max_jerk * (1 + 1e-9);
+    const bool in_band = c.bands.n > 0 && std::abs(x.a) <= c.bands.at(x.v * (1 - 1e-9)) * (1 + 1e-9) &&
+                         std::abs(x.j) <= c.bands.max_jerk * (1 + 1e-9);
+    return (at_cap || in_band) && x.v <= c.cap_mm_s * (1 + 1e-9);
+  };
+  const int n = 20000;
+  for (int k = 0; k <= n; ++k) {
+    const auto x = p.sample(p.duration() * k / n);
+    const auto it = std::upper_bound(bounds.begin(), bounds.end(), x.s);
+    const std::size_t i = std::min<std::size_t>(static_cast<std::size_t>(it - bounds.begin()) - 1, st.size() - 1);
+    const bool ok = allows(st[i], x) || (i > 0 && x.s - bounds[i] < 1e-9 && allows(st[i - 1], x));
+    ASSERT_TRUE(ok) << "s " << x.s << " v " << x.v << " a " << x.a << " j " << x.j << " stretch " << i;
+  }
+}
+
+// A curved stretch's speed bands: its acceleration at half its cap is 7 times that at its cap.
+AccelerationBands bands_of(double cap, double a_cap, double boost, double jerk) {
+  AccelerationBands b;
+  const double tops[] = {0.5, 0.7, 0.85, 0.95, 1.0};
+  b.n = 5;
+  b.max_jerk = jerk;
+  for (std::size_t k = 0; k < 5; ++k) {
+    b.top_mm_s[k] = k + 1 < 5 ? tops[k] * cap : cap;
+    b.acceleration[k] = a_cap * (1.0 + (boost - 1.0) * (1.0 - tops[k]) / 0.5);
+  }
+  return b;
+}
+
+// Issue 12: on a curve the centripetal part leaves more acceleration at lower speeds. A chain of
+// curved stretches speeds up under their speed bands, far harder than at the acceleration left at
+// the cap, and keeps each band at each speed. It brakes by one S-curve at the limits of the speed
+// it brakes from (here the band up to 0.85 of the cap: 280 mm/s^2, not the cap's 100).
+TEST(ChainProfile, CurvedStretchesSpeedUpUnderTheirSpeedBands) {
+  std::vector<CapStretch> st;
+  for (int k = 0; k < 4; ++k) st.push_back({5.0, 100.0, 100.0, 1e5, bands_of(100.0, 100.0, 7.0, 0.9e5)});
+  const PathLimits ceiling{100.0, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  const ScurveProfile at_cap = plan_scurve(20.0, 0.0, 0.0, {100.0, 100.0, 1e5});
+  const auto p = plan_chain_profile(st, 0.0, 0.0, ceiling, 0.0005, at_cap.duration());
+  ASSERT_TRUE(p.has_value());
+  expect_within_own_bands(*p, st);
+  EXPECT_LT(p->duration(), 0.6 * at_cap.duration());
+  double a_max = 0.0, a_min = 0.0;
+  for (int k = 0; k <= 2000; ++k) {
+    const double a = p->sample(p->duration() * k / 2000).a;
+    a_max = std::max(a_max, a);
+    a_min = std::min(a_min, a);
+  }
+  EXPECT_GT(a_max, 0.95 * 700.0);
+  EXPECT_LT(a_min, -2.5 * 100.0);
+}
+
+TEST(ChainProfile, SeededRandomBandedChainsKeepEachStretchsBands) {
+  std::mt19937_64 rng(20261205);
+  std::uniform_real_distribution<double> len(0.01, 5.0), cap(5.0, 200.0), acc(100.0, 3000.0), jr(0.002, 0.05),
+      boost(1.0, 8.0), unit(0.0, 1.0);
+  int planned = 0, trials = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = 2 + static_cast<int>(rng() % 12);
+    std::vector<CapStretch> st;
+    double total = 0.0, lo = 1e300;
+    PathLimits least{0.0, 1e300, 1e300};
+    for (int k = 0; k < n; ++k) {
+      const double a = acc(rng), c = cap(rng), j = a / jr(rng);
+      st.push_back({len(rng), c, a, j, unit(rng) < 0.7 ? bands_of(c, a, boost(rng), j * (0.5 + 0.5 * unit(rng))) : AccelerationBands{}});
+      total += st.back().length_mm;
+      lo = std::min(lo, c);
+      least.max_acceleration = std::min(least.max_acceleration, a);
+      least.max_jerk = std::min(least.max_jerk, j);
+    }
+    least.max_velocity = lo;
+    const double v0 = lo * unit(rng);
+    const double v1 = std::min(lo * unit(rng), reachable_velocity(v0, total, least));
+    const ScurveProfile flat = plan_scurve(total, v0, v1, least);
+    if (flat.end_velocity() != v1) continue;  // braking to v1 does not fit: not a chain the look-ahead makes
+    ++trials;
+    const PathLimits ceiling{lo, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+    const auto p = plan_chain_profile(st, v0, v1, ceiling, 0.0005, flat.duration());
+    if (!p) continue;
+    ++planned;
+    EXPECT_NEAR(p->start_velocity(), v0, 1e-9 * lo);
+    EXPECT_NEAR(p->end_velocity(), v1, 1e-9 * lo);
+    EXPECT_NEAR(p->distance(), total, 1e-9 * total);
+    expect_within_own_bands(*p, st);
+    if (::testing::Test::HasFailure()) {
+      ADD_FAILURE() << "trial " << trial;
+      return;
+    }
+  }
+  EXPECT_GT(planned, 9 * trials / 10);
+}
+
 }  // namespace
 }  // namespace kontur::plan

@@ -17,7 +17,7 @@ namespace kontur::plan {
 namespace {
 
 MoveConstraint move(double length, double vcap, double junction, double a = 1000, double j = 1e5) {
-  return {length, {vcap, a, j}, junction};
+  return {length, {vcap, a, j}, junction, {}};
 }
 
 TEST(Lookahead, LongMovesCruiseThroughTangentJunctions) {
@@ -60,7 +60,7 @@ TEST(Lookahead, StreamingEqualsWholeProgramPlanning) {
     std::size_t next = 0, popped = 0;
     while (popped < m.size()) {
       if (la.ready()) {
-        const ScurveProfile p = la.pop();
+        const auto p = la.pop();
         ASSERT_NEAR(p.start_velocity(), v[popped], 1e-9 * 300) << "trial " << trial << " move " << popped;
         ASSERT_NEAR(p.end_velocity(), v[popped + 1], 1e-9 * 300) << "trial " << trial << " move " << popped;
         ++popped;
@@ -80,7 +80,7 @@ std::size_t stream_and_compare(const std::vector<MoveConstraint>& m, Lookahead& 
   std::size_t popped = 0, largest = 0;
   auto release = [&] {
     while (la.ready()) {
-      const ScurveProfile p = la.pop();
+      const auto p = la.pop();
       EXPECT_NEAR(p.start_velocity(), v[popped], 1e-9 * 300) << "move " << popped;
       EXPECT_NEAR(p.end_velocity(), v[popped + 1], 1e-9 * 300) << "move " << popped;
       ++popped;
@@ -130,15 +130,14 @@ public:
     if (finished) return true;
     return junction1(0.0) >= junction1(window.back().limits.max_velocity);
   }
-  ScurveProfile pop() {
+  trajectory::PathProfile pop() {
     const std::size_t n = window.size();
     std::vector<double> v(n + 1, 0.0);
     v[0] = v_start_;
     for (std::size_t i = 1; i < n; ++i) v[i] = cap(i);
-    for (std::size_t i = n; i-- > 1;) v[i] = std::min(v[i], braking_velocity(v[i + 1], window[i].length_mm, window[i].limits));
-    for (std::size_t i = 0; i < n; ++i)
-      v[i + 1] = std::min(v[i + 1], reachable_velocity(v[i], window[i].length_mm, window[i].limits));
-    ScurveProfile p = plan_scurve(window[0].length_mm, v_start_, v[1], window[0].limits);
+    for (std::size_t i = n; i-- > 1;) v[i] = std::min(v[i], braking_velocity(v[i + 1], window[i]));
+    for (std::size_t i = 0; i < n; ++i) v[i + 1] = std::min(v[i + 1], reachable_velocity(v[i], window[i]));
+    trajectory::PathProfile p = move_profile(window[0], v_start_, v[1]);
     v_start_ = p.end_velocity();
     window.erase(window.begin());
     return p;
@@ -151,7 +150,7 @@ private:
   double junction1(double v_end) const {
     double v = v_end;
     for (std::size_t i = window.size(); i-- > 1;)
-      v = std::min(cap(i), braking_velocity(v, window[i].length_mm, window[i].limits));
+      v = std::min(cap(i), braking_velocity(v, window[i]));
     return v;
   }
   double v_start_ = 0.0;
@@ -166,7 +165,7 @@ TEST(Lookahead, SameProfilesAsReplanningTheWindowWhenTheLastMoveIsLoweredAfterPu
   for (int trial = 0; trial < 10; ++trial) {
     Lookahead la;
     ReplanningLookahead ref;
-    std::vector<ScurveProfile> got, want;
+    std::vector<trajectory::PathProfile> got, want;
     for (int i = 0; i < 600; ++i) {
       // Mostly tiny moves, so that windows get long and readiness tests are deferred.
       const double length = uni(0, 1) < 0.8 ? uni(0.01, 0.05) : std::exp(uni(std::log(0.05), std::log(5.0)));
@@ -195,6 +194,80 @@ TEST(Lookahead, SameProfilesAsReplanningTheWindowWhenTheLastMoveIsLoweredAfterPu
       ASSERT_EQ(got[k].end_velocity(), want[k].end_velocity()) << "trial " << trial << " move " << k;
       ASSERT_EQ(got[k].duration(), want[k].duration()) << "trial " << trial << " move " << k;
     }
+  }
+}
+
+// A curved move's speed bands: up to `boost` times its acceleration at half its cap, falling to
+// its own at the cap (as constraints.hpp's acceleration_bands gives them on a curve).
+MoveConstraint with_bands(MoveConstraint m, double boost, double jerk_share) {
+  const double tops[] = {0.5, 0.7, 0.85, 0.95, 1.0};
+  m.bands.n = 5;
+  m.bands.max_jerk = jerk_share * m.limits.max_jerk;
+  for (std::size_t k = 0; k < 5; ++k) {
+    m.bands.top_mm_s[k] = k + 1 < 5 ? tops[k] * m.limits.max_velocity : m.limits.max_velocity;
+    m.bands.acceleration[k] = m.limits.max_acceleration * (1.0 + (boost - 1.0) * (1.0 - tops[k]) / 0.5);
+  }
+  return m;
+}
+
+TEST(Lookahead, BandsLetACurvedMoveSpeedUpAndBrakeHarderBelowItsCap) {
+  // 20 moves of 2 mm at up to 150 mm/s, whose acceleration at the cap is 100 mm/s^2 but 700 at
+  // half of it: the junction speeds rise and fall faster than the S-curve at 100 allows, each by
+  // exactly what the bands allow.
+  std::vector<MoveConstraint> plain(20, move(2.0, 150, 1e9, 100, 1e5)), banded;
+  plain.back().max_end_velocity = 0.0;
+  for (const MoveConstraint& m : plain) banded.push_back(with_bands(m, 7.0, 1.0));
+  const auto v_plain = junction_velocities(plain), v = junction_velocities(banded);
+  EXPECT_GT(v[1], 1.5 * v_plain[1]);
+  EXPECT_GT(v[19], 1.5 * v_plain[19]);
+  EXPECT_NEAR(v[1], banded_reachable_velocity(0.0, 2.0, banded[0].bands), 1e-9);
+  EXPECT_NEAR(v[19], banded_braking_velocity(0.0, 2.0, banded[19].bands), 1e-9);
+  for (std::size_t i = 0; i < banded.size(); ++i) {
+    const double lo = std::min(v[i], v[i + 1]), hi = std::max(v[i], v[i + 1]);
+    EXPECT_LE(banded_change_distance(lo, hi, banded[i].bands), 2.0 * (1 + 1e-9)) << "move " << i;
+  }
+}
+
+// Streaming moves with and without bands gives the junction speeds of planning the whole
+// sequence, and every move's profile stays within its limits (the S-curve) or its bands.
+TEST(Lookahead, BandedMovesStreamAsTheWholeSequenceIsPlannedAndKeepTheirBands) {
+  std::mt19937_64 rng(testing::test_seed());
+  auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
+  for (int trial = 0; trial < 10; ++trial) {
+    std::vector<MoveConstraint> m;
+    for (int i = 0; i < 300; ++i) {
+      MoveConstraint c = move(std::exp(uni(std::log(0.01), std::log(20.0))), uni(5, 200),
+                              uni(0, 1) < 0.2 ? 0.0 : uni(0, 300), uni(50, 3000), uni(1e4, 1e6));
+      m.push_back(uni(0, 1) < 0.6 ? with_bands(c, uni(1.5, 8.0), uni(0.6, 1.0)) : c);
+    }
+    m.back().max_end_velocity = 0.0;
+    const auto v = junction_velocities(m);
+    Lookahead la;
+    std::size_t popped = 0;
+    const auto take = [&] {
+      const trajectory::PathProfile p = la.pop();
+      const MoveConstraint& c = m[popped];
+      ASSERT_NEAR(p.start_velocity(), v[popped], 1e-9 * 300) << "trial " << trial << " move " << popped;
+      ASSERT_NEAR(p.end_velocity(), v[popped + 1], 1e-9 * 300) << "trial " << trial << " move " << popped;
+      ASSERT_NEAR(p.distance(), c.length_mm, 1e-9 * c.length_mm) << "trial " << trial << " move " << popped;
+      bool in_limits = true, in_bands = c.bands.n > 0;
+      for (int k = 0; k <= 400; ++k) {
+        const trajectory::PathState x = p.sample(p.duration() * k / 400.0);
+        in_limits = in_limits && std::abs(x.a) <= c.limits.max_acceleration * (1 + 1e-9) &&
+                    std::abs(x.j) <= c.limits.max_jerk * (1 + 1e-9) && x.v <= c.limits.max_velocity * (1 + 1e-9);
+        in_bands = in_bands && std::abs(x.a) <= c.bands.at(x.v * (1 - 1e-9)) * (1 + 1e-9) &&
+                   std::abs(x.j) <= c.bands.max_jerk * (1 + 1e-9) && x.v <= c.limits.max_velocity * (1 + 1e-9);
+      }
+      EXPECT_TRUE(in_limits || in_bands) << "trial " << trial << " move " << popped;
+      ++popped;
+    };
+    for (const MoveConstraint& c : m) {
+      la.push(c);
+      while (la.ready()) take();
+    }
+    la.finish();
+    while (la.ready()) take();
+    ASSERT_EQ(popped, m.size());
   }
 }
 

@@ -244,14 +244,25 @@ inline constexpr double plan_centripetal_shares[] = {0.5, 0.7, 0.9};
 /// acceleration its centripetal part leaves at each speed: in bands up to these fractions of its cap
 /// (the last its cap), each with the acceleration left at its top (plan/banded_profile.hpp).
 inline constexpr double plan_acceleration_band_tops[] = {0.5, 0.7, 0.85, 0.95, 1.0};
+/// The look-ahead's braking under speed bands looks for the end speed that takes the longest
+/// braking also on a grid of this many intervals (plan/banded_profile.hpp).
+inline constexpr int plan_banded_braking_grid = 8;
+/// Where that missed it and braking to a junction's speed does not fit, the move brakes to the
+/// first of this many steps down from that speed that fits (Lookahead::pop, move_profile).
+inline constexpr int plan_banded_braking_fallback_steps = 64;
 /// The time a piece is estimated at, to choose its shares: its length at its cap plus a weight of
 /// the time a change from rest to the cap takes, half of it for each end of the piece where its
-/// chain starts or ends (a stop, a corner, a curvature jump), this for each end inside a chain,
-/// which changes its speed at its ends only. On XYZ.ini, with both ends weighed alike, 0.01-0.03
-/// gave 3D_Chips 98.2-98.8 s, random_lines (G20) 19.6-20.1 s, circle_small_segments 2.74-2.77 s;
-/// 0.5 gave 103.4 / 23.9 / 2.78 s, none (the largest cap) 107.1 / 19.7 / 3.41 s (the acceleration
-/// left too small); but arcs between corners slowed by up to 26 % with it (arc-arc-sawtooth).
-inline constexpr double plan_share_choice_change_weight = 0.01;
+/// chain starts or ends (a stop, a corner, a curvature jump), this for each end inside a chain.
+/// Inside a chain the largest cap is taken: the look-ahead and the chain's profile speed up and
+/// brake under the pieces' speed bands (more acceleration below the cap), so a high centripetal
+/// share costs acceleration only near the cap. Until 2026-12-04 the weight was 0.01 (with both
+/// ends weighed alike, 0.01-0.03 gave 3D_Chips 98.2-98.8 s then; 0.5 103.4 s; none 107.1 s, the
+/// acceleration at the cap left too small), and on pieces of a few micrometres the change
+/// outweighed the length: every piece of circle_small_segments took the smallest share (98 mm/s
+/// on its circle, against 132 at the largest). With the bands, on XYZ.ini: 0 gives
+/// circle_small_segments 1.816 s, 3D_Chips 91.53 s, random_lines (G20) 14.31 s; 0.001 gave
+/// circle_small_segments 2.118 s and 0.01 2.126 s (3D_Chips 0.2 % and 1.6 % slower than 0).
+inline constexpr double plan_share_choice_change_weight = 0.0;
 /// Samples per span of a curve when its geometry (tangent, curvature, curvature change) is
 /// bounded (more where the tangent turns by over 0.2 rad between samples), and the share of each
 /// sampled quantity's range its maximum is raised by (a smooth peak between samples turned by
@@ -347,6 +358,10 @@ inline constexpr double chain_profile_max_steps_per_flat = 4.0;
 /// it runs through: those limits are looked up again at most this many times (a slower easing or
 /// change runs further; a change still unsettled then takes the smallest over its whole range).
 inline constexpr int chain_profile_ease_rounds = 4;
+/// Speed levels of a chain's profile, as shares of its largest cap: the limits up to each level are
+/// every stretch's of its lowest speed band that holds there (CapStretch::bands), so that a curved
+/// stretch speeds up and brakes harder where it runs slower than its cap.
+inline constexpr double chain_profile_speed_levels[] = {0.5, 0.6, 0.7, 0.775, 0.85, 0.9, 0.95};
 /// Most pieces in one chain (pieces joined smoothly, planned with one S-curve): bounds the delay
 /// before the look-ahead sees them.
 inline constexpr std::size_t plan_chain_max_pieces = 256;

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <kontur/plan/banded_profile.hpp>
+#include <kontur/tolerances.hpp>
 #include <limits>
 #include <vector>
 
@@ -127,6 +128,47 @@ double AccelerationBands::at(double v) const noexcept {
 double banded_change_time(double va, double vb, const AccelerationBands& bands) {
   if (!valid(bands)) return kInf;
   return change_up(va, std::min(vb, bands.top_mm_s[static_cast<std::size_t>(bands.n - 1)]), bands).duration_s;
+}
+
+double banded_change_distance(double va, double vb, const AccelerationBands& bands) {
+  if (!valid(bands)) return kInf;
+  return change_up(va, std::min(vb, bands.top_mm_s[static_cast<std::size_t>(bands.n - 1)]), bands).distance_mm;
+}
+
+double banded_reachable_velocity(double v_from, double distance, const AccelerationBands& bands) {
+  if (!valid(bands) || !(distance > 0.0)) return v_from;
+  const double cap = bands.top_mm_s[static_cast<std::size_t>(bands.n - 1)];
+  if (!(v_from < cap)) return v_from;
+  const auto excess = [&](double v) { return detail::fit_excess(change_up(v_from, v, bands).distance_mm, distance); };
+  const double e_max = excess(cap);
+  if (e_max <= 0.0) return cap;
+  return narrow_and_bisect(v_from, cap, excess(v_from), e_max, excess).lo;
+}
+
+double banded_braking_velocity(double v_after, double distance, const AccelerationBands& bands) {
+  if (!valid(bands) || !(distance > 0.0)) return v_after;
+  const double cap = bands.top_mm_s[static_cast<std::size_t>(bands.n - 1)], jm = bands.max_jerk;
+  if (!(v_after < cap)) return v_after;
+  // The longest braking from v to an end speed in [v_after, v].
+  const auto worst = [&](double v) {
+    double d = change_up(v_after, v, bands).distance_mm;
+    const auto at = [&](double w) {
+      if (w > v_after && w < v) d = std::max(d, change_up(w, v, bands).distance_mm);
+    };
+    at(v / 3.0);
+    for (int k = 0; k < bands.n; ++k) {
+      const auto kk = static_cast<std::size_t>(k);
+      at(bands.acceleration[kk] * bands.acceleration[kk] / (2.0 * jm));
+      at(bands.top_mm_s[kk]);
+    }
+    for (int g = 1; g < tolerances::plan_banded_braking_grid; ++g)
+      at(v_after + (v - v_after) * g / tolerances::plan_banded_braking_grid);
+    return d;
+  };
+  const auto excess = [&](double v) { return detail::fit_excess(worst(v), distance); };
+  const double e_max = excess(cap);
+  if (e_max <= 0.0) return cap;
+  return narrow_and_bisect(v_after, cap, excess(v_after), e_max, excess).lo;
 }
 
 std::optional<trajectory::PathProfile> plan_banded_profile(double distance, double v0, double v1,

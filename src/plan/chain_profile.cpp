@@ -97,21 +97,36 @@ class ChainPlanner {
   // cautious: aim each junction's speed so low that, landing there at zero acceleration, every
   // later junction and the end stay in reach (slower, but it plans chains the other cannot).
   ChainPlanner(std::span<const CapStretch> stretches, double v0, double v1, const PathLimits& limits, bool cautious)
-      : v0_(v0), v1_(v1) {
+      : v0_(v0), v1_(v1), stretches_(stretches), limits_(limits) {
     bounds_.push_back(0.0);
+    bool banded = false;
     for (const CapStretch& c : stretches) {
       bounds_.push_back(bounds_.back() + c.length_mm);
       caps_.push_back(c.cap_mm_s);
-      acc_.push_back(std::min(limits.max_acceleration, c.max_acceleration));
-      jerk_.push_back(std::min(limits.max_jerk, c.max_jerk));
+      banded = banded || c.bands.n > 0;
     }
     length_ = bounds_.back();
     min_cap_ = RangeMin(caps_);
-    min_acc_ = RangeMin(acc_);
-    min_jerk_ = RangeMin(jerk_);
     double top = 0.0;
     for (double c : caps_) top = std::max(top, c);
     slack_v_ = tolerances::chain_profile_speed_slack * top;
+    // The limits at speed levels (shares of the largest cap), each stretch's at its band that
+    // holds up to the level; without bands, one level: every stretch's at its cap.
+    if (banded)
+      for (const double f : tolerances::chain_profile_speed_levels) levels_.push_back(f * top);
+    levels_.push_back(std::numeric_limits<double>::infinity());
+    for (const double level : levels_) {
+      std::vector<double> acc, jerk;
+      for (const CapStretch& c : stretches) {
+        const Lim l = stretch_limits(c, level);
+        acc.push_back(l.a);
+        jerk.push_back(l.j);
+      }
+      acc_.push_back(std::move(acc));
+      jerk_.push_back(std::move(jerk));
+      min_acc_.emplace_back(acc_.back());
+      min_jerk_.emplace_back(jerk_.back());
+    }
     junction_speed_.assign(caps_.size() + 1, 0.0);
     junction_speed_[caps_.size()] = v1_;
     for (std::size_t m = caps_.size() - 1; m >= 1; --m)
@@ -120,7 +135,26 @@ class ChainPlanner {
       for (std::size_t m = caps_.size() - 1; m >= 1; --m)
         junction_speed_[m] = std::min(junction_speed_[m], reachable_velocity(junction_speed_[m + 1],
                                                                              bounds_[m + 1] - bounds_[m],
-                                                                             {top, acc_[m], jerk_[m]}));
+                                                                             {top, acc_.back()[m], jerk_.back()[m]}));
+  }
+
+  // A stretch's limits at speeds up to v [mm/s]: of its lowest speed band that holds there, else
+  // at its cap (each at most the chain's).
+  [[nodiscard]] Lim stretch_limits(const CapStretch& c, double v) const {
+    Lim l{c.max_acceleration, c.max_jerk};
+    const AccelerationBands& b = c.bands;
+    for (int k = 0; k + 1 < b.n; ++k)  // (the last band is the cap's)
+      if (b.top_mm_s[static_cast<std::size_t>(k)] >= v) {
+        l = {b.acceleration[static_cast<std::size_t>(k)], b.max_jerk};
+        break;
+      }
+    return {std::min(limits_.max_acceleration, l.a), std::min(limits_.max_jerk, l.j)};
+  }
+
+  // The speed level [index] whose limits hold at speeds up to v [mm/s].
+  [[nodiscard]] std::size_t level(double v) const {
+    return static_cast<std::size_t>(std::lower_bound(levels_.begin(), levels_.end() - 1, v - slack_v_) -
+                                    levels_.begin());
   }
 
   // Smallest cap over the open interval (a, b) of distance [mm].
@@ -129,12 +163,15 @@ class ChainPlanner {
     return min_cap_(first, std::max(first, stretch_ending_at(b)));
   }
 
-  // Smallest limits over the stretches that [a, b] [mm] touches.
-  [[nodiscard]] Lim limits_over(double a, double b) const { return limits_of(stretch_at(a), stretch_at(b)); }
+  // Smallest limits over the stretches that [a, b] [mm] touches, at speeds up to v [mm/s].
+  [[nodiscard]] Lim limits_over(double a, double b, double v) const {
+    return limits_of(stretch_at(a), stretch_at(b), v);
+  }
 
-  // Smallest limits over stretches first .. last.
-  [[nodiscard]] Lim limits_of(std::size_t first, std::size_t last) const {
-    return {min_acc_(first, last), min_jerk_(first, last)};
+  // Smallest limits over stretches first .. last at speeds up to v [mm/s].
+  [[nodiscard]] Lim limits_of(std::size_t first, std::size_t last, double v) const {
+    const std::size_t k = level(v);
+    return {min_acc_[k](first, last), min_jerk_[k](first, last)};
   }
 
   // The stretch containing distance s (the later one at a boundary).
@@ -150,10 +187,10 @@ class ChainPlanner {
   // Bringing x's acceleration to zero at the smallest jerk of the stretches the easing runs
   // through.
   [[nodiscard]] Ease ease_from(const Kin& x) const {
-    double j = jerk_[stretch_at(x.s)];
+    double j = jerk_[level(x.v)][stretch_at(x.s)];
     Ease e = ease(x, j);
     for (int it = 0; it < tolerances::chain_profile_ease_rounds && e.duration_s > 0.0; ++it) {
-      const double lower = limits_over(x.s, x.s + std::max(0.0, e.distance_mm)).j;
+      const double lower = limits_over(x.s, x.s + std::max(0.0, e.distance_mm), std::max(x.v, e.v_end)).j;
       if (!(lower < j)) break;
       j = lower;
       e = ease(x, j);
@@ -201,17 +238,20 @@ class ChainPlanner {
   // The smallest limits over the stretches that one S-curve change of speed from v to w [mm/s]
   // between distances from and to [mm] runs through: braking, it cruises first and brakes at the
   // end; speeding up, it speeds up first and cruises after.
-  [[nodiscard]] Lim change_limits(double from, double to, double v, double w) const {
+  // (`peak`: the highest speed it may reach, if above both)
+  [[nodiscard]] Lim change_limits(double from, double to, double v, double w, double peak = 0.0) const {
     const bool braking = v > w;
-    const std::size_t k0 = braking ? stretch_ending_at(to) : stretch_at(from);
-    Lim l{acc_[k0], jerk_[k0]};
+    const double top = std::max({v, w, peak});
+    const std::size_t k0 = braking ? stretch_ending_at(to) : stretch_at(from), lv = level(top);
+    Lim l{acc_[lv][k0], jerk_[lv][k0]};
     for (int it = 0; it < tolerances::chain_profile_ease_rounds; ++it) {
       const double d = velocity_change_distance(v, w, l.a, l.j);
-      const Lim over = braking ? limits_inside(std::max(from, to - d), to) : limits_inside(from, std::min(to, from + d));
+      const Lim over = braking ? limits_inside(std::max(from, to - d), to, top)
+                               : limits_inside(from, std::min(to, from + d), top);
       if (!(over.a < l.a) && !(over.j < l.j)) return l;
       l.take(over.a, over.j);
     }
-    return limits_inside(from, to);
+    return limits_inside(from, to, top);
   }
 
   // Its distance [mm].
@@ -220,10 +260,11 @@ class ChainPlanner {
     return velocity_change_distance(v, w, l.a, l.j);
   }
 
-  // Smallest limits over the stretches that the interval (a, b) [mm] runs through.
-  [[nodiscard]] Lim limits_inside(double a, double b) const {
+  // Smallest limits over the stretches that the interval (a, b) [mm] runs through, at speeds up to
+  // v [mm/s].
+  [[nodiscard]] Lim limits_inside(double a, double b, double v) const {
     const std::size_t last = stretch_ending_at(b);
-    return limits_of(std::min(stretch_at(a), last), last);
+    return limits_of(std::min(stretch_at(a), last), last, v);
   }
 
   // The stretch whose part up to distance s contains it (the earlier one at a junction).
@@ -242,9 +283,10 @@ class ChainPlanner {
   // allowed there, into a stretch of a smaller acceleration limit.
   [[nodiscard]] bool ease_fits(const Kin& x, const Ease& e) const {
     const std::size_t first = stretch_at(x.s);
-    if (std::abs(x.a) > acc_[first] * (1.0 + 1e-9)) return false;
+    const std::vector<double>& acc = acc_[level(std::max(x.v, e.v_end))];
+    if (std::abs(x.a) > acc[first] * (1.0 + 1e-9)) return false;
     for (std::size_t k = first + 1; k < caps_.size() && bounds_[k] < x.s + e.distance_mm; ++k)
-      if (std::abs(x.a) > acc_[k]) return false;
+      if (std::abs(x.a) > acc[k]) return false;
     return true;
   }
 
@@ -255,7 +297,7 @@ class ChainPlanner {
     if (std::max(x.v, e.v_end) > min_cap(x.s, x.s + e.distance_mm) + slack_v_) return false;
     if (!ease_fits(x, e)) return false;
     const std::size_t end = caps_.size(), first = stretch_at(x.s);
-    const Lim least = limits_of(first, end - 1);
+    const Lim least = limits_of(first, end - 1, e.v_end);
     // (beyond this, even at the smallest limits ahead, braking to a stop fits before the junction)
     const double reach = e.distance_mm + 2.0 * velocity_change_distance(e.v_end, 0.0, least.a, least.j);
     for (std::size_t m = first + 1; m < end && bounds_[m] - x.s <= reach; ++m) {
@@ -274,7 +316,7 @@ class ChainPlanner {
   // A lower bound on the room [mm] for braking from x to speed w at junction m: at the smallest
   // limits of all the stretches from x to it (room() finds those the braking runs through).
   [[nodiscard]] double room_at_least(const Kin& x, const Ease& e, std::size_t m, double w) const {
-    const Lim upto = limits_of(stretch_at(x.s), m - 1);
+    const Lim upto = limits_of(stretch_at(x.s), m - 1, std::max(e.v_end, w));
     return bounds_[m] - x.s - e.distance_mm - velocity_change_distance(e.v_end, w, upto.a, upto.j);
   }
 
@@ -292,16 +334,17 @@ class ChainPlanner {
       bool moved = false;
       for (const double want : {1.0, 0.0, -1.0}) {
         // the limits of the stretch it is in, then of all the stretches the step runs through
-        Lim l{acc_[stretch_at(x.s)], jerk_[stretch_at(x.s)]};
+        const std::size_t here = stretch_at(x.s), lv = level(x.v);
+        Lim l{acc_[lv][here], jerk_[lv][here]};
         Kin y;
         double j = 0.0;
         bool within = false;
-        for (int round = 0; round < 2 && !within; ++round) {
+        for (int round = 0; round < 3 && !within; ++round) {
           if (std::abs(x.a) > l.a) break;
           j = std::clamp(want * l.j, (-l.a - x.a) / dt, (l.a - x.a) / dt);
           y = advance(x, j, dt);
           if (!(y.s > x.s)) break;
-          const Lim span = limits_over(x.s, y.s);
+          const Lim span = limits_over(x.s, y.s, speed_range(x, j, dt, y).hi);
           within = !(std::abs(x.a) > span.a) && !(std::abs(y.a) > span.a * (1.0 + 1e-12)) &&
                    !(std::abs(j) > span.j * (1.0 + 1e-12));
           l = span;
@@ -340,10 +383,11 @@ class ChainPlanner {
       double w = 0.0;
       for (;;) {
         w = landing_speed(bind, x.v);
-        const Lim l = change_limits(x.s, bounds_[bind], x.v, w);
+        const double peak = std::max({x.v, w, x.v > slack_v_ ? 0.0 : cap_all});
+        const Lim l = change_limits(x.s, bounds_[bind], x.v, w, peak);
         const double dist = bounds_[bind] - x.s;
         if (!(dist >= 0.0) || x.v < 0.0) return std::nullopt;
-        const PathLimits pl{std::max({x.v, w, x.v > slack_v_ ? 0.0 : cap_all}), l.a, l.j};
+        const PathLimits pl{peak, l.a, l.j};
         c = plan_scurve(dist, x.v, w, pl);
         if (!(std::abs(c.end_velocity() - w) <= slack_v_)) return std::nullopt;
         std::size_t over = bind;
@@ -369,9 +413,20 @@ class ChainPlanner {
   // below it), the speed never negative.
   [[nodiscard]] bool fits(const std::vector<ProfilePhase>& phases, double duration_s) const {
     const double ds = tolerances::chain_profile_boundary_mm;
-    const auto within = [&](std::size_t m, const Kin& a, const Kin& b, double jerk) {
-      return !(std::abs(a.a) > acc_[m] * (1.0 + 1e-9)) && !(std::abs(b.a) > acc_[m] * (1.0 + 1e-9)) &&
-             !(std::abs(jerk) > jerk_[m] * (1.0 + 1e-9));
+    // (within the limits at its cap or of a band that holds up to the part's highest speed)
+    const auto within = [&](std::size_t m, const Kin& a, const Kin& b, double jerk, double v_hi) {
+      const auto in = [&](const Lim& l) {
+        return !(std::abs(a.a) > l.a * (1.0 + 1e-9)) && !(std::abs(b.a) > l.a * (1.0 + 1e-9)) &&
+               !(std::abs(jerk) > l.j * (1.0 + 1e-9));
+      };
+      const CapStretch& c = stretches_[m];
+      if (in(stretch_limits(c, std::numeric_limits<double>::infinity()))) return true;
+      for (int k = 0; k + 1 < c.bands.n; ++k)
+        if (c.bands.top_mm_s[static_cast<std::size_t>(k)] + slack_v_ >= v_hi &&
+            in({std::min(limits_.max_acceleration, c.bands.acceleration[static_cast<std::size_t>(k)]),
+                std::min(limits_.max_jerk, c.bands.max_jerk)}))
+          return true;
+      return false;
     };
     for (std::size_t k = 0; k < phases.size(); ++k) {
       const ProfilePhase& p = phases[k];
@@ -383,7 +438,7 @@ class ChainPlanner {
       const double lo = std::min(x.s + ds, 0.5 * (x.s + y.s)), hi = std::max(y.s - ds, 0.5 * (x.s + y.s));
       const std::size_t first = stretch_at(lo), last = stretch_at(hi);
       if (first == last) {
-        if (r.hi > caps_[first] + slack_v_ || !within(first, x, y, p.jerk)) return false;
+        if (r.hi > caps_[first] + slack_v_ || !within(first, x, y, p.jerk, r.hi)) return false;
         continue;
       }
       // Crossing junctions: each part against its own stretch's cap and limits.
@@ -391,7 +446,8 @@ class ChainPlanner {
       for (std::size_t m = first; m <= last; ++m) {
         const double t_b = m == last ? dt : crossing_time(x, p.jerk, dt, bounds_[m + 1]);
         const Kin a = advance(x, p.jerk, t_a), b = advance(x, p.jerk, t_b);
-        if (speed_range(a, p.jerk, t_b - t_a, b).hi > caps_[m] + slack_v_ || !within(m, a, b, p.jerk)) return false;
+        const double v_hi = speed_range(a, p.jerk, t_b - t_a, b).hi;
+        if (v_hi > caps_[m] + slack_v_ || !within(m, a, b, p.jerk, v_hi)) return false;
         t_a = t_b;
       }
     }
@@ -412,8 +468,13 @@ class ChainPlanner {
 
  private:
   double v0_, v1_;
-  std::vector<double> bounds_, caps_, acc_, jerk_, junction_speed_;  // junction_speed_[m]: at bounds_[m], m >= 1
-  RangeMin min_cap_, min_acc_, min_jerk_;  // over ranges of stretches
+  std::span<const CapStretch> stretches_;
+  PathLimits limits_;  // the chain's (no stretch's are larger)
+  std::vector<double> bounds_, caps_, junction_speed_;  // junction_speed_[m]: at bounds_[m], m >= 1
+  std::vector<double> levels_;  // speed levels [mm/s], ascending, the last infinite
+  std::vector<std::vector<double>> acc_, jerk_;  // [level][stretch]: limits at speeds up to the level
+  RangeMin min_cap_;  // over ranges of stretches
+  std::vector<RangeMin> min_acc_, min_jerk_;  // [level], over ranges of stretches
   double length_ = 0.0, slack_v_ = 0.0;
 };
 

@@ -1,4 +1,7 @@
 #include <kontur/plan/lookahead.hpp>
+#include <kontur/tolerances.hpp>
+
+#include "bisection.hpp"
 
 #include <algorithm>
 
@@ -8,9 +11,7 @@ namespace {
 // Highest speed at a move's start from which it can brake, within its length, to v_after or to
 // any higher end speed below it (see braking_velocity: monotone in v_after, so rest after the
 // window is the most conservative assumption).
-double brake_from(double v_after, const MoveConstraint& m) {
-  return braking_velocity(v_after, m.length_mm, m.limits);
-}
+double brake_from(double v_after, const MoveConstraint& m) { return braking_velocity(v_after, m); }
 
 // Junction speeds of a run of moves that starts at v_start and ends at v_end: caps, then a
 // backward pass (braking) and a forward pass (acceleration).
@@ -25,11 +26,44 @@ std::vector<double> plan_junctions(std::span<const MoveConstraint> moves, double
   // Backward: each junction must allow braking to the next within the move between.
   for (std::size_t i = n; i-- > 1;) v[i] = std::min(v[i], brake_from(v[i + 1], moves[i]));
   // Forward: and reaching it from the one before.
-  for (std::size_t i = 0; i < n; ++i) v[i + 1] = std::min(v[i + 1], reachable_velocity(v[i], moves[i].length_mm, moves[i].limits));
+  for (std::size_t i = 0; i < n; ++i) v[i + 1] = std::min(v[i + 1], reachable_velocity(v[i], moves[i]));
   return v;
 }
 
 }  // namespace
+
+double reachable_velocity(double v_from, const MoveConstraint& m) noexcept {
+  const double v = reachable_velocity(v_from, m.length_mm, m.limits);
+  if (m.bands.n == 0 || !(v < m.limits.max_velocity)) return v;
+  return std::max(v, std::min(m.limits.max_velocity, banded_reachable_velocity(v_from, m.length_mm, m.bands)));
+}
+
+double braking_velocity(double v_after, const MoveConstraint& m) noexcept {
+  const double v = braking_velocity(v_after, m.length_mm, m.limits);
+  if (m.bands.n == 0 || !(v < m.limits.max_velocity)) return v;
+  return std::max(v, std::min(m.limits.max_velocity, banded_braking_velocity(v_after, m.length_mm, m.bands)));
+}
+
+trajectory::PathProfile move_profile(const MoveConstraint& m, double v0, double v1) {
+  const PathLimits& l = m.limits;
+  // (the S-curve's change fits: speeding up within its reach, braking within the length)
+  const auto scurve_fits = [&](double w) {
+    return w >= v0 ? !(w > reachable_velocity(v0, m.length_mm, l))
+                   : detail::fits(velocity_change_distance(w, v0, l.max_acceleration, l.max_jerk), m.length_mm);
+  };
+  if (scurve_fits(v1) || m.bands.n == 0) return trajectory::PathProfile(plan_scurve(m.length_mm, v0, v1, l));
+  if (auto p = plan_banded_profile(m.length_mm, v0, v1, m.bands)) return std::move(*p);
+  // Braking to v1 fits neither: the look-ahead's bound on the longest braking under the bands
+  // (banded_braking_velocity) missed the end speed that takes longest by a little. Braking to a
+  // lower speed is safe for what follows (from a lower speed every later junction is in reach of
+  // the next move's forward pass); the first of a descending ladder that fits is taken.
+  for (int k = 1; k <= tolerances::plan_banded_braking_fallback_steps; ++k) {
+    const double w = v1 * (1.0 - static_cast<double>(k) / tolerances::plan_banded_braking_fallback_steps);
+    if (scurve_fits(w)) return trajectory::PathProfile(plan_scurve(m.length_mm, v0, w, l));
+    if (auto p = plan_banded_profile(m.length_mm, v0, w, m.bands)) return std::move(*p);
+  }
+  return trajectory::PathProfile(plan_scurve(m.length_mm, v0, v1, l));
+}
 
 std::vector<double> junction_velocities(std::span<const MoveConstraint> moves) { return plan_junctions(moves, 0.0, 0.0); }
 
@@ -141,7 +175,7 @@ bool Lookahead::ready() const {
   return !final_.empty();
 }
 
-ScurveProfile Lookahead::pop() {
+trajectory::PathProfile Lookahead::pop() {
   // From where the previous move ended, to a final junction speed, or to rest after the window.
   double v1 = 0.0;
   if (!final_.empty()) {
@@ -153,8 +187,8 @@ ScurveProfile Lookahead::pop() {
   }
   const MoveConstraint& m = window_.front();
   // The forward pass of plan_junctions at junction 1.
-  v1 = std::min(v1, reachable_velocity(v_start_, m.length_mm, m.limits));
-  ScurveProfile p = plan_scurve(m.length_mm, v_start_, v1, m.limits);
+  v1 = std::min(v1, reachable_velocity(v_start_, m));
+  trajectory::PathProfile p = move_profile(m, v_start_, v1);
   v_start_ = p.end_velocity();
   window_.pop_front();
   going_on_.pop_front();

@@ -393,9 +393,10 @@ void MotionPlanner::Chain::count(const Piece& p, bool first) noexcept {
   own_time_s = (first ? 0.0 : own_time_s) + (cap > 0.0 ? p.length_mm / cap : 0.0);
 }
 
-void MotionPlanner::append_stretches(const Chain& chain, std::vector<CapStretch>& out) {
+void MotionPlanner::append_stretches(const Chain& chain, std::vector<CapStretch>& out) const {
   for (const Piece& p : chain.pieces)
-    out.push_back({p.length_mm, p.limits.max_velocity, p.limits.max_acceleration, p.limits.max_jerk});
+    out.push_back({p.length_mm, p.limits.max_velocity, p.limits.max_acceleration, p.limits.max_jerk,
+                   p.bands});
 }
 
 std::optional<trajectory::PathProfile> MotionPlanner::following_profile(std::span<const CapStretch> stretches,
@@ -411,7 +412,7 @@ std::optional<trajectory::PathProfile> MotionPlanner::following_profile(std::spa
   return plan_chain_profile(stretches, v0, v1, ceiling, step, time_bound_s);
 }
 
-trajectory::PathProfile MotionPlanner::chain_profile(const Chain& chain, const ScurveProfile& planned) const {
+trajectory::PathProfile MotionPlanner::chain_profile(const Chain& chain, const trajectory::PathProfile& planned) const {
   // The S-curve at the smallest cap always fits; the others are taken only where they are faster.
   std::optional<trajectory::PathProfile> best;
   double best_s = planned.duration();
@@ -424,15 +425,15 @@ trajectory::PathProfile MotionPlanner::chain_profile(const Chain& chain, const S
   // Up to the smallest cap, speeding up and braking harder where every piece's centripetal part
   // leaves more (the pieces' speed bands, each at its lowest over the chain's band; a curved piece
   // alone in its chain: its own bands, plan/banded_profile.hpp).
-  if (const AccelerationBands bands = chain_bands(chain); bands.n > 0)
-    consider(plan_banded_profile(chain.length_mm, planned.start_velocity(), planned.end_velocity(), bands));
-  if (chain.max_cap_mm_s > chain.min_cap_mm_s) {
-    std::vector<CapStretch> stretches;
-    append_stretches(chain, stretches);
+  if (chain.bands.n > 0)
+    consider(plan_banded_profile(chain.length_mm, planned.start_velocity(), planned.end_velocity(), chain.bands));
+  std::vector<CapStretch> stretches;
+  append_stretches(chain, stretches);
+  const bool banded = std::any_of(stretches.begin(), stretches.end(), [](const CapStretch& c) { return c.bands.n > 0; });
+  if (chain.max_cap_mm_s > chain.min_cap_mm_s || banded)
     consider(following_profile(stretches, planned.start_velocity(), planned.end_velocity(), chain.limits,
                                planned.duration()));
-  }
-  return best ? std::move(*best) : trajectory::PathProfile(planned);
+  return best ? std::move(*best) : planned;
 }
 
 AccelerationBands MotionPlanner::chain_bands(const Chain& chain) const {
@@ -449,7 +450,7 @@ AccelerationBands MotionPlanner::chain_bands(const Chain& chain) const {
   }
   bool any = false;
   for (const Piece& p : chain.pieces) {
-    const AccelerationBands own = acceleration_bands(p.geometry, p.limits, machine_, p.planned_share);
+    const AccelerationBands& own = p.bands;
     any = any || own.n > 0;
     b.max_jerk = std::min(b.max_jerk, own.n > 0 ? own.max_jerk : p.limits.max_jerk);
     for (int k = 0; k < b.n; ++k) {
@@ -498,13 +499,17 @@ void MotionPlanner::close_chain(double end_velocity) {
   MoveConstraint mc;
   mc.limits = open_.pieces.front().limits;
   mc.limits.max_velocity = open_.min_cap_mm_s;
-  for (const Piece& p : open_.pieces) {
+  for (Piece& p : open_.pieces) {
+    p.bands = acceleration_bands(p.geometry, p.limits, machine_, p.planned_share);  // (its limits are final)
     mc.length_mm += p.length_mm;
     mc.limits.max_acceleration = std::min(mc.limits.max_acceleration, p.limits.max_acceleration);
     mc.limits.max_jerk = std::min(mc.limits.max_jerk, p.limits.max_jerk);
   }
   mc.max_end_velocity = std::min(mc.limits.max_velocity, end_velocity);
   open_.limits = mc.limits;
+  // (a curved chain speeds up and brakes harder where it runs below its cap)
+  open_.bands = chain_bands(open_);
+  mc.bands = open_.bands;
   open_.smooth_end = std::isinf(end_velocity);
   lookahead_.push(mc);
   pending_.push_back(std::move(open_));

@@ -161,9 +161,9 @@ endif()
 kontur_cli_case(run_example 0 "t,x,y,z,v,block.*PASS +every limit held" run examples/programs/square_arc.ngc -o -)
 # Without -o (issue 19): no setpoints, the short summary on stdout and how to write them; --json the JSON.
 kontur_cli_case(run_without_output_prints_the_short_summary 0
-                "time +5\\.185 s, 5186 setpoints.*PASS +every limit held.*setpoints not written: -o FILE" run
+                "time +5\\.174 s, 5175 setpoints.*PASS +every limit held.*setpoints not written: -o FILE" run
                 examples/programs/square_arc.ngc)
-kontur_cli_case(run_json_prints_the_summary 0 "\"total_time_s\": 5\\.185,.*\"passed\": true" run
+kontur_cli_case(run_json_prints_the_summary 0 "\"total_time_s\": 5\\.174,.*\"passed\": true" run
                 examples/programs/square_arc.ngc --json --quiet)
 kontur_cli_case(run_json_not_with_setpoints_on_stdout 2 "stdout is taken" run examples/programs/square_arc.ngc
                 -o - --json)

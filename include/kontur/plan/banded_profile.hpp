@@ -43,6 +43,20 @@ struct AccelerationBands {
 /// under the bands, from and to zero acceleration.
 [[nodiscard]] double banded_change_time(double va, double vb, const AccelerationBands& bands);
 
+/// Distance [mm] covered by that change (infinity where the bands are invalid).
+[[nodiscard]] double banded_change_distance(double va, double vb, const AccelerationBands& bands);
+
+/// The largest speed [mm/s] (at most the last top) reachable from v_from within `distance` [mm] by
+/// speeding up under the bands; by symmetry the largest from which braking to v_from fits. v_from
+/// where the bands are invalid or v_from is above the last top.
+[[nodiscard]] double banded_reachable_velocity(double v_from, double distance, const AccelerationBands& bands);
+
+/// As braking_velocity (scurve.hpp) under the bands: the largest speed [mm/s] (at most the last
+/// top) from which braking to every end speed in [v_after, that speed] fits in `distance` [mm]
+/// (the braking distance is not monotone in the end speed; its largest is looked for at v / 3, at
+/// a_k^2 / 2J of each band, at the band tops and on a grid of end speeds). Monotone in v_after.
+[[nodiscard]] double banded_braking_velocity(double v_after, double distance, const AccelerationBands& bands);
+
 /// The profile over `distance` [mm] from v0 to v1 [mm/s] (both at most the last top; v1 reachable
 /// from v0 as the look-ahead planned it), zero acceleration at both ends, |a| <= bands.at(v),
 /// |j| <= bands.max_jerk, v <= the last top. None where the bands are empty or invalid or the

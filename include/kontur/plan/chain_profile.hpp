@@ -17,6 +17,7 @@
 // The profile ends exactly at its length and end speed. The result is checked phase by phase
 // against every stretch's cap, acceleration and jerk; the caller keeps the S-curve at the smallest
 // cap (the look-ahead's plan, always valid) where the check fails or where it is not faster.
+#include <kontur/plan/banded_profile.hpp>
 #include <kontur/plan/scurve.hpp>
 #include <kontur/trajectory/path_profile.hpp>
 
@@ -30,14 +31,18 @@ namespace kontur::plan {
 struct CapStretch {
   double length_mm = 0.0;  ///< [mm]
   double cap_mm_s = 0.0;   ///< speed cap over it [mm/s]
-  /// its own acceleration [mm/s^2] and jerk [mm/s^3] limits (the chain's where larger)
+  /// its own acceleration [mm/s^2] and jerk [mm/s^3] limits at every speed up to its cap (the
+  /// chain's where larger)
   double max_acceleration = std::numeric_limits<double>::infinity();
   double max_jerk = std::numeric_limits<double>::infinity();
+  /// on a curve: more acceleration at lower speeds (constraints.hpp's acceleration_bands; n = 0:
+  /// none), with the bands' jerk, used at the speeds below the cap where it leaves more
+  AccelerationBands bands{};
 };
 
 /// The profile over the stretches (in order) from v0 to v1 [mm/s] with zero acceleration at both
-/// ends, v <= the cap of the stretch it runs through, |a| and |j| within that stretch's limits
-/// (each at most `limits`'). Requires v0 at most the first stretch's cap, v1 at most the last's,
+/// ends, v <= the cap of the stretch it runs through, |a| and |j| within that stretch's limits at
+/// the speeds it runs at (its cap's, or a speed band's below it; each at most `limits`'). Requires v0 at most the first stretch's cap, v1 at most the last's,
 /// and v1 within reach of v0 (as the look-ahead plans a chain: one S-curve at its smallest cap,
 /// which takes `time_bound_s` [s]). Steps of `step_s` [s]; gives up (nullopt) after
 /// chain_profile_max_steps_per_flat * time_bound_s [s] of steps or where the check fails.

@@ -2,6 +2,7 @@
 // Look-ahead across moves: the speed at every junction, so that braking starts early enough
 // (the reason seed 000 computes the length of a spline). The path limits of a move from its
 // geometry and the machine's axis limits are in constraints.hpp (included here for callers).
+#include <kontur/plan/banded_profile.hpp>
 #include <kontur/plan/constraints.hpp>
 #include <kontur/plan/scurve.hpp>
 
@@ -18,7 +19,21 @@ struct MoveConstraint {
   double length_mm = 0.0;         ///< path length [mm]
   PathLimits limits;              ///< speed cap, path acceleration and jerk of the move
   double max_end_velocity = 0.0;  ///< largest speed at the junction with the next move [mm/s]
+  /// On a curve: more path acceleration at lower speeds (the last top limits.max_velocity; n = 0:
+  /// none). The move speeds up and brakes by the S-curve at `limits` or under these bands,
+  /// whichever reaches further.
+  AccelerationBands bands{};
 };
+
+/// The largest speed [mm/s] a move can reach from v_from (and, by symmetry, brake to v_from from)
+/// over its length: at its limits, or under its bands where they reach further.
+[[nodiscard]] double reachable_velocity(double v_from, const MoveConstraint& m) noexcept;
+/// The largest speed [mm/s] at the move's start from which it can brake to v_after, or to any end
+/// speed between (braking_velocity, banded_braking_velocity).
+[[nodiscard]] double braking_velocity(double v_after, const MoveConstraint& m) noexcept;
+/// The move's profile from v0 to v1 [mm/s] as the look-ahead planned them: the S-curve at its
+/// limits where that change fits, else under its bands.
+[[nodiscard]] trajectory::PathProfile move_profile(const MoveConstraint& m, double v0, double v1);
 
 /// Junction speeds v_0 .. v_N of a whole sequence that starts and ends at rest: the largest that
 /// respect every cap and junction limit and that each move can accelerate or brake between
@@ -67,7 +82,7 @@ public:
   /// True when the oldest move's profile is final.
   [[nodiscard]] bool ready() const;
   /// The oldest move's profile (requires ready()); removes it from the window.
-  [[nodiscard]] ScurveProfile pop();
+  [[nodiscard]] trajectory::PathProfile pop();
   /// Moves waiting in the window.
   [[nodiscard]] std::size_t size() const noexcept { return window_.size(); }
   /// Braking evaluations (braking_velocity calls) made so far, for tests of the cost.

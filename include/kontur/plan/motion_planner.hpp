@@ -66,6 +66,7 @@ class MotionPlanner {
     bool planned_end_smooth = true;  // ... and whether its end was taken to be inside a chain
     double length_mm = 0.0;
     PathLimits limits;  // final once its end junction is known (settle_last)
+    AccelerationBands bands;  // its speed bands (constraints.hpp), set when its chain closes
   };
   // Consecutive pieces joined by smooth junctions (tangent and curvature continuous) with similar
   // speed caps: one entry of the look-ahead, one S-curve over their summed length with the
@@ -77,7 +78,8 @@ class MotionPlanner {
     double min_cap_mm_s = 0.0, max_cap_mm_s = 0.0;
     double length_mm = 0.0;    // of its pieces
     double own_time_s = 0.0;   // each piece's length at its own cap, summed
-    PathLimits limits;  // what the look-ahead planned it with (set when closed)
+    PathLimits limits;  // what the look-ahead planned it with (set when closed) ...
+    AccelerationBands bands;  // ... and its speed bands up to its smallest cap (none on lines)
     bool smooth_end = false;  // the next chain continues it smoothly (it was closed for its caps)
     // Takes a piece's cap, length and time at its cap into the figures above (`first`: they
     // start anew with it).
@@ -88,9 +90,10 @@ class MotionPlanner {
   // The chain's profile: the look-ahead plans it as one S-curve at its smallest cap; the fastest of
   // that, the profile under the chain's speed bands (plan/banded_profile.hpp) and, where its
   // pieces' caps differ, one that follows them (plan/chain_profile.hpp).
-  [[nodiscard]] trajectory::PathProfile chain_profile(const Chain& chain, const ScurveProfile& planned) const;
-  // Appends the chain's pieces as stretches, each with its own cap and limits.
-  static void append_stretches(const Chain& chain, std::vector<CapStretch>& out);
+  [[nodiscard]] trajectory::PathProfile chain_profile(const Chain& chain, const trajectory::PathProfile& planned) const;
+  // Appends the chain's pieces as stretches, each with its own cap and limits, and a curved one's
+  // limits at lower speeds (its speed bands).
+  void append_stretches(const Chain& chain, std::vector<CapStretch>& out) const;
   // The profile that follows each stretch's cap and limits from v0 to v1 [mm/s] (none where it
   // cannot be planned), stepped at a share of the ramp time of `least`, the smallest limits.
   [[nodiscard]] std::optional<trajectory::PathProfile> following_profile(std::span<const CapStretch> stretches,
@@ -130,7 +133,7 @@ class MotionPlanner {
   std::deque<Chain> pending_;            // closed chains in the look-ahead window, in order
   struct Planned {
     Chain chain;
-    ScurveProfile planned;  // the look-ahead's
+    trajectory::PathProfile planned;  // the look-ahead's
   };
   std::vector<Planned> held_;            // chains out of the look-ahead, each joining the next smoothly
   std::size_t held_pieces_ = 0;          // their pieces
