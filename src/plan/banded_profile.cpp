@@ -166,9 +166,12 @@ double banded_braking_velocity(double v_after, double distance, const Accelerati
     return d;
   };
   const auto excess = [&](double v) { return detail::fit_excess(worst(v), distance); };
-  const double e_max = excess(cap);
-  if (e_max <= 0.0) return cap;
-  return narrow_and_bisect(v_after, cap, excess(v_after), e_max, excess).lo;
+  // First the speed from which braking to v_after itself fits (one change per step); only where
+  // braking to a speed between takes longer from there, the search over every end speed.
+  const double direct = banded_reachable_velocity(v_after, distance, bands);
+  const double e_direct = excess(direct);
+  if (e_direct <= 0.0) return direct;
+  return narrow_and_bisect(v_after, direct, excess(v_after), e_direct, excess).lo;
 }
 
 std::optional<trajectory::PathProfile> plan_banded_profile(double distance, double v0, double v1,
