@@ -197,6 +197,21 @@ TEST(Lookahead, SameProfilesAsReplanningTheWindowWhenTheLastMoveIsLoweredAfterPu
   }
 }
 
+// The motion planner asks after every move whether the oldest chain is final, but pushes only
+// closed chains: asking again of a window that has not changed costs no braking evaluation (a
+// circle of 10,000 lines in 40 chains cost 0.48 s of braking searches under speed bands).
+TEST(Lookahead, AskingAgainOfAnUnchangedWindowCostsNoEvaluation) {
+  Lookahead la;
+  for (int i = 0; i < 50; ++i) la.push(move(0.02, 100, 1e9, 500, 1e4));  // braking needs more than the window
+  ASSERT_FALSE(la.ready());
+  const std::size_t evaluations = la.braking_evaluations();
+  for (int i = 0; i < 100; ++i) EXPECT_FALSE(la.ready());
+  EXPECT_EQ(la.braking_evaluations(), evaluations);
+  la.limit_last_end_velocity(0.0);  // a change: asked anew
+  (void)la.ready();
+  EXPECT_GT(la.braking_evaluations(), evaluations);
+}
+
 // A curved move's speed bands: up to `boost` times its acceleration at half its cap, falling to
 // its own at the cap (as constraints.hpp's acceleration_bands gives them on a curve).
 MoveConstraint with_bands(MoveConstraint m, double boost, double jerk_share) {

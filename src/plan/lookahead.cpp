@@ -131,6 +131,7 @@ void Lookahead::update_rest() const {
 }
 
 void Lookahead::push(const MoveConstraint& move) {
+  not_ready_seen_ = false;
   const std::size_t n_old = window_.size();
   const bool tail_changed = n_old >= 1 && tail_changed_since_seen();
   window_.push_back(move);
@@ -150,7 +151,7 @@ void Lookahead::push(const MoveConstraint& move) {
 bool Lookahead::ready() const {
   if (window_.empty()) return false;
   if (!final_.empty() || finished_ || window_.size() >= max_window) return true;
-  if (skip_checks_ > 0) return false;
+  if (skip_checks_ > 0 || not_ready_seen_) return false;
   // The oldest move is final when its end speed does not depend on what follows the window: the
   // backward pass gives the same speed at junction 1 whether the window ends at rest or the
   // motion goes on at the last move's cap. (Ending every move at zero acceleration makes braking
@@ -175,6 +176,7 @@ bool Lookahead::ready() const {
   // A test that ran over many moves is not repeated for the next cost / check_defer_share pushes
   // (whether it found final junctions or not): O(check_defer_share) evaluations per push.
   skip_checks_ = cost > check_defer_min ? cost / check_defer_share : 0;
+  not_ready_seen_ = final_.empty();
   return !final_.empty();
 }
 

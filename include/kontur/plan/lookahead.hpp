@@ -89,7 +89,10 @@ public:
   [[nodiscard]] std::size_t braking_evaluations() const noexcept { return evaluations_; }
 
 private:
-  void tail_changed() noexcept { tail_dirty_ = true; }
+  void tail_changed() noexcept {
+    tail_dirty_ = true;
+    not_ready_seen_ = false;
+  }
   // Cap of junction i (1 <= i < size()): its own limit and both neighbours' caps [mm/s].
   [[nodiscard]] double junction_cap(std::size_t i) const noexcept;
   // The speed at junction i from which move i can brake to v_after [mm/s] (counted).
@@ -113,6 +116,9 @@ private:
   mutable bool tail_dirty_ = false;      // back() or limit_last_end_velocity since tail_seen_
   mutable MoveConstraint tail_seen_;     // the last move as the cached passes saw it
   mutable std::size_t skip_checks_ = 0;  // pushes before the next readiness test
+  // The last readiness test found nothing final and the window has not changed since: the next
+  // gives the same answer (the motion planner asks after every move, pushes only closed chains).
+  mutable bool not_ready_seen_ = false;
   mutable std::size_t evaluations_ = 0;
   double v_start_ = 0.0;
   bool finished_ = false;
