@@ -413,7 +413,8 @@ std::optional<trajectory::PathProfile> MotionPlanner::following_profile(std::spa
 }
 
 trajectory::PathProfile MotionPlanner::chain_profile(const Chain& chain, const trajectory::PathProfile& planned) const {
-  // The S-curve at the smallest cap always fits; the others are taken only where they are faster.
+  // The look-ahead's profile (the S-curve at the smallest cap, or under the chain's bands) always
+  // fits; the others are taken only where they are faster.
   std::optional<trajectory::PathProfile> best;
   double best_s = planned.duration();
   const auto consider = [&](std::optional<trajectory::PathProfile> p) {

@@ -87,9 +87,10 @@ class MotionPlanner {
   };
   // Adds a piece to the open chain (closing it first if the piece's cap does not fit).
   void add_piece(Piece piece);
-  // The chain's profile: the look-ahead plans it as one S-curve at its smallest cap; the fastest of
-  // that, the profile under the chain's speed bands (plan/banded_profile.hpp) and, where its
-  // pieces' caps differ, one that follows them (plan/chain_profile.hpp).
+  // The chain's profile: the look-ahead plans it as one S-curve at its smallest cap, or under its
+  // speed bands where only they reach its end speed; the fastest of that, the profile under the
+  // chain's speed bands (plan/banded_profile.hpp) and, where its pieces' caps differ or are curved,
+  // one that follows them (plan/chain_profile.hpp).
   [[nodiscard]] trajectory::PathProfile chain_profile(const Chain& chain, const trajectory::PathProfile& planned) const;
   // Appends the chain's pieces as stretches, each with its own cap and limits, and a curved one's
   // limits at lower speeds (its speed bands).
