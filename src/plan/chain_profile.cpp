@@ -73,6 +73,8 @@ class RangeMin {
       levels_.push_back(std::move(next));
     }
   }
+  // The value at index i.
+  [[nodiscard]] double operator[](std::size_t i) const { return levels_[0][i]; }
   // The smallest over indices first .. last (first <= last).
   [[nodiscard]] double operator()(std::size_t first, std::size_t last) const {
     const auto k = static_cast<std::size_t>(std::bit_width(last - first + 1) - 1);
@@ -115,17 +117,15 @@ class ChainPlanner {
     if (banded)
       for (const double f : tolerances::chain_profile_speed_levels) levels_.push_back(f * top);
     levels_.push_back(std::numeric_limits<double>::infinity());
+    std::vector<double> acc(stretches.size()), jerk(stretches.size());
     for (const double level : levels_) {
-      std::vector<double> acc, jerk;
-      for (const CapStretch& c : stretches) {
-        const Lim l = stretch_limits(c, level);
-        acc.push_back(l.a);
-        jerk.push_back(l.j);
+      for (std::size_t k = 0; k < stretches.size(); ++k) {
+        const Lim l = stretch_limits(stretches[k], level);
+        acc[k] = l.a;
+        jerk[k] = l.j;
       }
-      acc_.push_back(std::move(acc));
-      jerk_.push_back(std::move(jerk));
-      min_acc_.emplace_back(acc_.back());
-      min_jerk_.emplace_back(jerk_.back());
+      min_acc_.emplace_back(acc);
+      min_jerk_.emplace_back(jerk);
     }
     junction_speed_.assign(caps_.size() + 1, 0.0);
     junction_speed_[caps_.size()] = v1_;
@@ -135,19 +135,21 @@ class ChainPlanner {
       for (std::size_t m = caps_.size() - 1; m >= 1; --m)
         junction_speed_[m] = std::min(junction_speed_[m], reachable_velocity(junction_speed_[m + 1],
                                                                              bounds_[m + 1] - bounds_[m],
-                                                                             {top, acc_.back()[m], jerk_.back()[m]}));
+                                                                             {top, min_acc_.back()[m], min_jerk_.back()[m]}));
   }
 
   // A stretch's limits at speeds up to v [mm/s]: of its lowest speed band that holds there, else
-  // at its cap (each at most the chain's).
+  // at its cap.
   [[nodiscard]] Lim stretch_limits(const CapStretch& c, double v) const {
-    Lim l{c.max_acceleration, c.max_jerk};
-    const AccelerationBands& b = c.bands;
-    for (int k = 0; k + 1 < b.n; ++k)  // (the last band is the cap's)
-      if (b.top_mm_s[static_cast<std::size_t>(k)] >= v) {
-        l = {b.acceleration[static_cast<std::size_t>(k)], b.max_jerk};
-        break;
-      }
+    for (int k = 0; k + 1 < c.bands.n; ++k)  // (the last band is the cap's)
+      if (c.bands.top_mm_s[static_cast<std::size_t>(k)] >= v) return band_limits(c, k);
+    return band_limits(c, -1);
+  }
+
+  // The limits of a stretch's speed band k (-1: at its cap), each at most the chain's.
+  [[nodiscard]] Lim band_limits(const CapStretch& c, int k) const {
+    const Lim l = k < 0 ? Lim{c.max_acceleration, c.max_jerk}
+                        : Lim{c.bands.acceleration[static_cast<std::size_t>(k)], c.bands.max_jerk};
     return {std::min(limits_.max_acceleration, l.a), std::min(limits_.max_jerk, l.j)};
   }
 
@@ -187,7 +189,7 @@ class ChainPlanner {
   // Bringing x's acceleration to zero at the smallest jerk of the stretches the easing runs
   // through.
   [[nodiscard]] Ease ease_from(const Kin& x) const {
-    double j = jerk_[level(x.v)][stretch_at(x.s)];
+    double j = min_jerk_[level(x.v)][stretch_at(x.s)];
     Ease e = ease(x, j);
     for (int it = 0; it < tolerances::chain_profile_ease_rounds && e.duration_s > 0.0; ++it) {
       const double lower = limits_over(x.s, x.s + std::max(0.0, e.distance_mm), std::max(x.v, e.v_end)).j;
@@ -243,7 +245,7 @@ class ChainPlanner {
     const bool braking = v > w;
     const double top = std::max({v, w, peak});
     const std::size_t k0 = braking ? stretch_ending_at(to) : stretch_at(from), lv = level(top);
-    Lim l{acc_[lv][k0], jerk_[lv][k0]};
+    Lim l{min_acc_[lv][k0], min_jerk_[lv][k0]};
     for (int it = 0; it < tolerances::chain_profile_ease_rounds; ++it) {
       const double d = velocity_change_distance(v, w, l.a, l.j);
       const Lim over = braking ? limits_inside(std::max(from, to - d), to, top)
@@ -283,7 +285,7 @@ class ChainPlanner {
   // allowed there, into a stretch of a smaller acceleration limit.
   [[nodiscard]] bool ease_fits(const Kin& x, const Ease& e) const {
     const std::size_t first = stretch_at(x.s);
-    const std::vector<double>& acc = acc_[level(std::max(x.v, e.v_end))];
+    const RangeMin& acc = min_acc_[level(std::max(x.v, e.v_end))];
     if (std::abs(x.a) > acc[first] * (1.0 + 1e-9)) return false;
     for (std::size_t k = first + 1; k < caps_.size() && bounds_[k] < x.s + e.distance_mm; ++k)
       if (std::abs(x.a) > acc[k]) return false;
@@ -335,7 +337,7 @@ class ChainPlanner {
       for (const double want : {1.0, 0.0, -1.0}) {
         // the limits of the stretch it is in, then of all the stretches the step runs through
         const std::size_t here = stretch_at(x.s), lv = level(x.v);
-        Lim l{acc_[lv][here], jerk_[lv][here]};
+        Lim l{min_acc_[lv][here], min_jerk_[lv][here]};
         Kin y;
         double j = 0.0;
         bool within = false;
@@ -420,12 +422,9 @@ class ChainPlanner {
                !(std::abs(jerk) > l.j * (1.0 + 1e-9));
       };
       const CapStretch& c = stretches_[m];
-      if (in(stretch_limits(c, std::numeric_limits<double>::infinity()))) return true;
+      if (in(band_limits(c, -1))) return true;
       for (int k = 0; k + 1 < c.bands.n; ++k)
-        if (c.bands.top_mm_s[static_cast<std::size_t>(k)] + slack_v_ >= v_hi &&
-            in({std::min(limits_.max_acceleration, c.bands.acceleration[static_cast<std::size_t>(k)]),
-                std::min(limits_.max_jerk, c.bands.max_jerk)}))
-          return true;
+        if (c.bands.top_mm_s[static_cast<std::size_t>(k)] + slack_v_ >= v_hi && in(band_limits(c, k))) return true;
       return false;
     };
     for (std::size_t k = 0; k < phases.size(); ++k) {
@@ -472,9 +471,9 @@ class ChainPlanner {
   PathLimits limits_;  // the chain's (no stretch's are larger)
   std::vector<double> bounds_, caps_, junction_speed_;  // junction_speed_[m]: at bounds_[m], m >= 1
   std::vector<double> levels_;  // speed levels [mm/s], ascending, the last infinite
-  std::vector<std::vector<double>> acc_, jerk_;  // [level][stretch]: limits at speeds up to the level
   RangeMin min_cap_;  // over ranges of stretches
-  std::vector<RangeMin> min_acc_, min_jerk_;  // [level], over ranges of stretches
+  // [level]: each stretch's limits at speeds up to the level, and their minima over ranges
+  std::vector<RangeMin> min_acc_, min_jerk_;
   double length_ = 0.0, slack_v_ = 0.0;
 };
 
