@@ -428,12 +428,13 @@ trajectory::PathProfile MotionPlanner::chain_profile(const Chain& chain, const t
   // alone in its chain: its own bands, plan/banded_profile.hpp).
   if (chain.bands.n > 0)
     consider(plan_banded_profile(chain.length_mm, planned.start_velocity(), planned.end_velocity(), chain.bands));
-  std::vector<CapStretch> stretches;
-  append_stretches(chain, stretches);
-  const bool banded = std::any_of(stretches.begin(), stretches.end(), [](const CapStretch& c) { return c.bands.n > 0; });
-  if (chain.max_cap_mm_s > chain.min_cap_mm_s || banded)
+  // (a chain has bands where one of its pieces has: chain_bands)
+  if (chain.max_cap_mm_s > chain.min_cap_mm_s || chain.bands.n > 0) {
+    std::vector<CapStretch> stretches;
+    append_stretches(chain, stretches);
     consider(following_profile(stretches, planned.start_velocity(), planned.end_velocity(), chain.limits,
                                planned.duration()));
+  }
   return best ? std::move(*best) : planned;
 }
 
