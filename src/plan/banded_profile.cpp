@@ -125,14 +125,24 @@ double AccelerationBands::at(double v) const noexcept {
   return n > 0 ? acceleration[static_cast<std::size_t>(n - 1)] : 0.0;
 }
 
+namespace {
+
+// The change from va up to vb (at most the last top), or none where the bands are invalid.
+std::optional<Change> change_within(double va, double vb, const AccelerationBands& bands) {
+  if (!valid(bands)) return std::nullopt;
+  return change_up(va, std::min(vb, bands.top_mm_s[static_cast<std::size_t>(bands.n - 1)]), bands);
+}
+
+}  // namespace
+
 double banded_change_time(double va, double vb, const AccelerationBands& bands) {
-  if (!valid(bands)) return kInf;
-  return change_up(va, std::min(vb, bands.top_mm_s[static_cast<std::size_t>(bands.n - 1)]), bands).duration_s;
+  const std::optional<Change> c = change_within(va, vb, bands);
+  return c ? c->duration_s : kInf;
 }
 
 double banded_change_distance(double va, double vb, const AccelerationBands& bands) {
-  if (!valid(bands)) return kInf;
-  return change_up(va, std::min(vb, bands.top_mm_s[static_cast<std::size_t>(bands.n - 1)]), bands).distance_mm;
+  const std::optional<Change> c = change_within(va, vb, bands);
+  return c ? c->distance_mm : kInf;
 }
 
 double banded_reachable_velocity(double v_from, double distance, const AccelerationBands& bands) {
@@ -145,10 +155,10 @@ double banded_reachable_velocity(double v_from, double distance, const Accelerat
   return narrow_and_bisect(v_from, cap, excess(v_from), e_max, excess).lo;
 }
 
-double banded_braking_velocity(double v_after, double distance, const AccelerationBands& bands) {
-  if (!valid(bands) || !(distance > 0.0)) return v_after;
+double banded_braking_velocity(double v_after, double distance, const AccelerationBands& bands, double at_least) {
+  if (!valid(bands) || !(distance > 0.0)) return std::max(v_after, at_least);
   const double cap = bands.top_mm_s[static_cast<std::size_t>(bands.n - 1)], jm = bands.max_jerk;
-  if (!(v_after < cap)) return v_after;
+  if (!(v_after < cap)) return std::max(v_after, at_least);
   // The longest braking from v to an end speed in [v_after, v].
   const auto worst = [&](double v) {
     double d = change_up(v_after, v, bands).distance_mm;
@@ -169,9 +179,10 @@ double banded_braking_velocity(double v_after, double distance, const Accelerati
   // First the speed from which braking to v_after itself fits (one change per step); only where
   // braking to a speed between takes longer from there, the search over every end speed.
   const double direct = banded_reachable_velocity(v_after, distance, bands);
+  if (!(direct > at_least)) return std::max(v_after, at_least);
   const double e_direct = excess(direct);
   if (e_direct <= 0.0) return direct;
-  return narrow_and_bisect(v_after, direct, excess(v_after), e_direct, excess).lo;
+  return std::max(at_least, narrow_and_bisect(v_after, direct, excess(v_after), e_direct, excess).lo);
 }
 
 std::optional<trajectory::PathProfile> plan_banded_profile(double distance, double v0, double v1,

@@ -41,10 +41,7 @@ double reachable_velocity(double v_from, const MoveConstraint& m) noexcept {
 double braking_velocity(double v_after, const MoveConstraint& m) noexcept {
   const double v = braking_velocity(v_after, m.length_mm, m.limits);
   if (m.bands.n == 0 || !(v < m.limits.max_velocity)) return v;
-  // (braking to v_after alone bounds the banded braking from above: where even that is not
-  // faster, the search over every end speed is not needed)
-  if (!(banded_reachable_velocity(v_after, m.length_mm, m.bands) > v)) return v;
-  return std::max(v, std::min(m.limits.max_velocity, banded_braking_velocity(v_after, m.length_mm, m.bands)));
+  return std::min(m.limits.max_velocity, banded_braking_velocity(v_after, m.length_mm, m.bands, v));
 }
 
 trajectory::PathProfile move_profile(const MoveConstraint& m, double v0, double v1) {

@@ -55,7 +55,10 @@ struct AccelerationBands {
 /// top) from which braking to every end speed in [v_after, that speed] fits in `distance` [mm]
 /// (the braking distance is not monotone in the end speed; its largest is looked for at v / 3, at
 /// a_k^2 / 2J of each band, at the band tops and on a grid of end speeds). Monotone in v_after.
-[[nodiscard]] double banded_braking_velocity(double v_after, double distance, const AccelerationBands& bands);
+/// `at_least` [mm/s]: a speed the caller has already (the S-curve's): where braking to v_after
+/// alone does not beat it, it is given back without the search over end speeds.
+[[nodiscard]] double banded_braking_velocity(double v_after, double distance, const AccelerationBands& bands,
+                                             double at_least = 0.0);
 
 /// The profile over `distance` [mm] from v0 to v1 [mm/s] (both at most the last top; v1 reachable
 /// from v0 as the look-ahead planned it), zero acceleration at both ends, |a| <= bands.at(v),
