@@ -7,6 +7,7 @@
 // listed with their messages in test_gcode_shared_programs.cpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <deque>
 #include <filesystem>
 #include <kontur/error.hpp>
@@ -14,6 +15,7 @@
 #include <kontur/pipeline.hpp>
 #include <kontur/verify/checker.hpp>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -81,6 +83,54 @@ TEST_P(SharedProgramRun, SetpointsKeepEveryLimitAndThePath) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Shared, SharedProgramRun, testing::ValuesIn(run_cases()), case_name);
+
+// The time-optimal reference is the fastest acceleration-limited profile along the path, so the
+// planner (within the same limits, and jerk-limited) can reach no point of the path earlier: at
+// the end of every move the reference's time so far (the summary's per-block time_optimal_s, added
+// up) is at most the planner's (its last setpoint on the move, plus one period for the part of the
+// move after it). On lines, arcs, blends, smoothed runs and NURBS, on XYZ.ini and on the machine
+// with jerk = A / T, where the planner comes closest to the reference.
+TEST(SharedProgramReference, NoMoveEndsBeforeTheReferenceReachesIt) {
+  const std::filesystem::path at_machine =
+      std::filesystem::path(KONTUR_SOURCE_DIR) / "examples" / "machines" / "linuxcnc_xyz_acceleration_limited.toml";
+  for (const char* program : {"linuxcnc-tp/performance/circle_small_segments_ncd.ngc",
+                              "linuxcnc-tp/performance/short_segments_0.001.ngc", "linuxcnc-tp/arc-feed/arc_time.ngc",
+                              "linuxcnc-tp/diagnostic/rgh.ngc", "linuxcnc-nurbs/G5_nurbs-xy.ngc"}) {
+    for (const std::filesystem::path& machine_file :
+         {shared_dir / "linuxcnc-tp" / "configs" / "XYZ.ini", at_machine}) {
+      SCOPED_TRACE(std::string(program) + " on " + machine_file.filename().string());
+      const Machine machine = read_machine(machine_file.string());
+      PipelineOptions options;
+      options.time_optimal = true;
+      Pipeline pipeline(machine, options);
+      std::vector<double> last_t;  // [s] the last setpoint's time on each move (-1: none)
+      PipelineEvents events;
+      events.setpoint = [&](const trajectory::Setpoint& sp) {
+        if (sp.move == program::no_move) return;
+        if (last_t.size() <= sp.move) last_t.resize(sp.move + 1, -1.0);
+        last_t[sp.move] = sp.t_s;
+      };
+      const RunResult result = pipeline.run((shared_dir / program).string(), events);
+      ASSERT_TRUE(result.passed);
+      const auto summary = nlohmann::json::parse(result.summary_json);
+      const auto& blocks = summary.at("blocks");
+      ASSERT_EQ(blocks.size(), pipeline.moves().size());
+      double reference_s = 0.0;  // [s] the reference's time to the end of the move
+      std::size_t checked = 0;
+      for (std::size_t i = 0; i < blocks.size(); ++i) {
+        const double t = blocks[i].at("time_optimal_s").get<double>();
+        ASSERT_GE(t, 0.0);
+        reference_s += t;
+        if (i >= last_t.size() || last_t[i] < 0.0) continue;  // (a move shorter than a period)
+        EXPECT_LE(reference_s, last_t[i] + machine.servo_period_s + 1e-9) << "move " << i << ", line " << blocks[i].at("line");
+        ++checked;
+      }
+      EXPECT_NEAR(reference_s, summary.at("time_optimal_s").get<double>(), 1e-9 * reference_s);
+      // (most moves are checked: all but those a period passes over)
+      EXPECT_GT(checked, std::min<std::size_t>(blocks.size(), static_cast<std::size_t>(result.setpoints)) / 2);
+    }
+  }
+}
 
 }  // namespace
 }  // namespace kontur

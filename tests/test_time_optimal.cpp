@@ -324,6 +324,38 @@ TEST(TimeOptimal, OnlinePlannerIsNeverFaster) {
   EXPECT_GE(online, reference) << "online " << online << " reference " << reference;
 }
 
+// The reference's time per move (the summary's per-block time_optimal_s) is the same total cut at
+// the moves: it adds up to total_time_s, a move of zero length takes none, and a move is as long
+// as its own grid segments take.
+TEST(TimeOptimal, MoveTimesAddUpToTheTotal) {
+  const Machine m = machine(200.0, 2000.0);
+  Path p = mixed_path();
+  p.line({0, 0, 0}, {0, 0, 0}, 100.0);  // zero length: skipped
+  p.line({0, 0, 0}, {10, 0, 0}, 100.0);
+  TimeOptimalOptions o;
+  o.corners = CornerRule::servo_period;
+  const TimeOptimalProfile r = time_optimal_profile(p.moves, m, o);
+  ASSERT_EQ(r.move_time_s.size(), p.moves.size());
+  double sum = 0.0;
+  for (double t : r.move_time_s) {
+    EXPECT_GE(t, 0.0);
+    sum += t;
+  }
+  EXPECT_NEAR(sum, r.total_time_s, 1e-12 * r.total_time_s);
+  EXPECT_EQ(r.move_time_s[p.moves.size() - 2], 0.0);
+  for (std::size_t i = 0; i < p.moves.size(); ++i) {
+    if (i != p.moves.size() - 2) {
+      EXPECT_GT(r.move_time_s[i], 0.0) << "move " << i;
+    }
+  }
+  // With corners as stops the last line starts and ends at rest: its own trapezoid.
+  EXPECT_NEAR(time_optimal_profile(p.moves, m).move_time_s.back(), rest_to_rest_time(10.0, 100.0, 2000.0), 1e-5);
+  // Nothing to run: one zero per move.
+  Path empty;
+  empty.line({1, 1, 1}, {1, 1, 1}, 100.0);
+  EXPECT_EQ(time_optimal_profile(empty.moves, m).move_time_s, std::vector<double>{0.0});
+}
+
 TEST(TimeOptimal, LargestGridCoarsensTheStep) {
   const Machine m = machine(200.0, 2000.0);
   Path p;

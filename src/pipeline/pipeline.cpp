@@ -20,13 +20,13 @@ namespace {
 // The time of the fastest acceleration-limited profile along the path [s]: a corner is passed with
 // the velocity jump of one servo period that keeps the acceleration (what the online planner's
 // junction rule allows on such a machine).
-double time_optimal_time(const std::vector<program::Move>& moves, const Machine& machine) {
+plan::TimeOptimalProfile time_optimal_reference(const std::vector<program::Move>& moves, const Machine& machine) {
   std::vector<plan::TimeOptimalMove> reference;
   reference.reserve(moves.size());
   for (const program::Move& m : moves) reference.push_back({m.curve.get(), m.feed_mm_s, m.exact_stop});
   plan::TimeOptimalOptions options;
   options.corners = plan::CornerRule::servo_period;
-  return plan::time_optimal_profile(reference, machine, options).total_time_s;
+  return plan::time_optimal_profile(reference, machine, options);
 }
 
 }  // namespace
@@ -155,7 +155,11 @@ RunResult Pipeline::run(const std::string& program, const PipelineEvents& events
   // The reference plans the tool path (X Y Z) only: none for a program that moves extra axes.
   const bool extra = std::any_of(path_.moves().begin(), path_.moves().end(),
                                  [](const program::Move& m) { return program::moves_extra_axes(m); });
-  if (options_.time_optimal && !extra) extras.time_optimal_s = time_optimal_time(path_.moves(), machine_);
+  if (options_.time_optimal && !extra) {
+    plan::TimeOptimalProfile reference = time_optimal_reference(path_.moves(), machine_);
+    extras.time_optimal_s = reference.total_time_s;
+    extras.move_time_optimal_s = std::move(reference.move_time_s);
+  }
   result.summary_json =
       report::summary_json(program, machine_, result.check, path_.moves(), result.total_time_s, extras);
   return result;

@@ -268,7 +268,10 @@ TimeOptimalProfile time_optimal_profile(std::span<const TimeOptimalMove> moves, 
   }
   TimeOptimalProfile out;
   out.length_mm = total_length;
-  if (used.empty()) return out;
+  if (used.empty()) {
+    out.move_time_s.assign(moves.size(), 0.0);
+    return out;
+  }
   // Coarsen the step if the grid would exceed max_points.
   double step = options.max_step_mm;
   if (total_intervals_at_step > static_cast<double>(options.max_points))
@@ -375,6 +378,7 @@ TimeOptimalProfile time_optimal_profile(std::span<const TimeOptimalMove> moves, 
   out.move_index.resize(N + 1);
   out.move_s_mm.resize(N + 1);
   double time = 0.0;
+  out.move_time_s.assign(moves.size(), 0.0);
   for (std::size_t k = 0; k <= N; ++k) {
     out.s_mm[k] = pts[k].s;
     out.v_mm_s[k] = std::sqrt(xs[k]);
@@ -388,7 +392,9 @@ TimeOptimalProfile time_optimal_profile(std::span<const TimeOptimalMove> moves, 
                          fmt::format("time-optimal reference: the path cannot be run near s = {} mm (move {}): every "
                                      "admissible speed there is 0",
                                      pts[k].s, pts[k].move + 1));
-      time += segment_time(pts[k - 1], pts[k].s - pts[k - 1].s, out.v_mm_s[k - 1], out.v_mm_s[k]);
+      const double dt = segment_time(pts[k - 1], pts[k].s - pts[k - 1].s, out.v_mm_s[k - 1], out.v_mm_s[k]);
+      time += dt;
+      out.move_time_s[pts[k - 1].move] += dt;  // (the segment [k-1, k] lies on the move of its start)
     }
   }
   out.total_time_s = time;

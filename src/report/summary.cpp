@@ -78,7 +78,10 @@ std::string summary_json(const std::string& program, const Machine& machine, con
     field("max_acceleration_ratio", b.max_acceleration_ratio);
     field("max_jerk_ratio", b.max_jerk_ratio);
     field("max_path_error_mm", b.max_path_error_mm);
-    field("max_chord_error_mm", b.max_chord_error_mm, true);
+    const bool reference = i < extras.move_time_optimal_s.size();
+    field("max_chord_error_mm", b.max_chord_error_mm, !reference);
+    // the reference's time on this move, against the planner's (about setpoints x servo period)
+    if (reference) field("time_optimal_s", extras.move_time_optimal_s[i], true);
     text += "    }";
   }
   text += n > 0 ? "\n  ]" : "]";

@@ -181,6 +181,8 @@ kontur_cli_case(run_axis_the_machine_lacks 1
                 examples/programs/rotary_g93.ngc -o /tmp/kontur_cli_rotary_refused.csv)
 # --time-optimal: the reference time and the ratio (>= 1: the reference is a lower bound).
 kontur_cli_case(run_time_optimal 0 "\"time_optimal_s\": [0-9.]+,[^}]*\"time_ratio\": 1\\.[0-9]+" run examples/programs/square_arc.ngc --time-optimal -o /tmp/kontur_cli_run_time_optimal.csv --json)
+# ... and each block the reference's time on its move, after its chord error.
+kontur_cli_case(run_time_optimal_per_block 0 "\"max_chord_error_mm\": [-0-9.e]+,[^\"]*\"time_optimal_s\": 0\\.[0-9]+" run examples/programs/square_arc.ngc --time-optimal --json)
 kontur_cli_case(run_bad_program 1 "knot_count\\.ngc:[0-9]+:[0-9]+: G0?6\\.2: [0-9]+ knots given" run tests/data/gcode/bad/knot_count.ngc -o /tmp/kontur_cli_run_bad.csv)
 kontur_cli_case(run_refuses_to_overwrite_its_program 1 "square_arc\\.ngc" run examples/programs/square_arc.ngc -o examples/programs/square_arc.ngc)
 kontur_cli_case(run_help 0 "Example:.*--report" run --help)

@@ -60,6 +60,10 @@ struct TimeOptimalProfile {
   /// is active over the whole segment; where the profile reaches a cap inside a segment, the
   /// exact time of accelerating (braking) at the bound and cruising at the higher end speed.
   double total_time_s = 0.0;
+  /// Time of each input move [s] (indexed as `moves`; 0 for a move of zero length): the times of
+  /// the segments that lie on it, as total_time_s counts them, so that they add up to it (to
+  /// rounding). Where the planner's time on a move is far above this, that move loses the time.
+  std::vector<double> move_time_s;
   double length_mm = 0.0;            ///< length of the whole path [mm]
   std::size_t corners = 0;           ///< tangent discontinuities found (stops or servo-period corners)
 };

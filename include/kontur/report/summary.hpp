@@ -15,6 +15,8 @@ namespace kontur::report {
 /// What a summary adds after the per-move table, when given.
 struct SummaryExtras {
   std::optional<double> time_optimal_s;      ///< run --time-optimal: the reference time [s] (and time_ratio)
+  /// run --time-optimal: the reference's time on each move [s] (per block: time_optimal_s)
+  std::vector<double> move_time_optimal_s;
   std::optional<std::string> setpoint_file;  ///< verify: the file checked
   std::optional<gcode::DialectChoice> dialect;  ///< the dialect the program was read in, and why
 };
