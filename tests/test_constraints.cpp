@@ -123,6 +123,38 @@ TEST(Constraints, ArcKeepsTheAccelerationItsTangentAndCurvatureLeaveTogether) {
   }
 }
 
+TEST(Constraints, AxisFarSlowerThanTheOthersLeavesAHelixAccelerationAtItsCap) {
+  // LinuxCNC's XY_slowZ.ini: Z has 1/300 of X's and Y's limits. Along a flat helix (half a turn of
+  // radius 12.7 mm falling 0.05 mm) Z's curvature is zero, but the bound of what may lie between
+  // samples raised it to 4e-4 / mm in the pairs, which at the cap the maxima allowed was beyond Z's
+  // limit: no path acceleration was left, and path_limits took the first axis's (762 mm/s^2) on a
+  // circle whose centripetal part already took 600 of it (helix_slowdown: X at 1.10 times its limit).
+  // At the cap and acceleration path_limits gives, every axis stays within its limit at every point.
+  Machine m = full_machine();
+  for (AxisLimits& axis : m.axes) {
+    axis.max_velocity = 203.2;
+    axis.max_acceleration = 762.0;
+    axis.max_jerk = 76200.0;
+  }
+  m.axes[2].max_velocity = 0.254;
+  m.axes[2].max_acceleration = 2.54;
+  m.axes[2].max_jerk = 254.0;
+  const HelixArc helix(CircleFrame{Vec3(12.7, 0, 0.0508), Vec3(-1, 0, 0), Vec3(0, -1, 0), Vec3(0, 0, 1)}, 12.7,
+                       std::numbers::pi, -0.0508);
+  const PathGeometry g = path_geometry(helix, helix.u_min(), helix.u_max());
+  const PathLimits l = path_limits(g, 39.0, 423.3, m, 0.0);
+  ASSERT_GT(l.max_velocity, 0.0);
+  ASSERT_GT(l.max_acceleration, 0.0);
+  for (int k = 0; k <= 1000; ++k) {
+    const double u = helix.u_min() + (helix.u_max() - helix.u_min()) * k / 1000.0;
+    const auto [t, kv] = tangent_and_curvature(helix.derivatives(u, 2));
+    for (int i = 0; i < 3; ++i)
+      EXPECT_LE(std::abs(t[i]) * l.max_acceleration + std::abs(kv[i]) * l.max_velocity * l.max_velocity,
+                m.axes[static_cast<std::size_t>(i)].max_acceleration * (1.0 + 1e-9))
+          << "axis " << i << " at u " << u;
+  }
+}
+
 TEST(Constraints, PairedBoundHoldsAtEveryPointOfRandomNurbs) {
   // Seeded random cubic NURBS (weights 0.2..5): at the speed cap and the path acceleration of each
   // span, |t_i| a + |K_i| v^2 stays within A_i at 2 000 points of the span, not only at the samples.

@@ -43,6 +43,13 @@ std::vector<RunCase> run_cases() {
     // The machine with different limits per axis, on the trajectory-planner programs.
     if (p.rfind("linuxcnc-tp/", 0) == 0) cases.push_back({p, "XYZ_uneven.ini"});
   }
+  // The machine whose Z has 1/300 of X's and Y's limits, on helices and arcs through Z (the
+  // sampling margin of a helix's Z curvature, zero itself, left no acceleration at the cap:
+  // helix_slowdown ran X at 1.10 times its limit; test_constraints.cpp has the rule).
+  for (const char* p : {"linuxcnc-tp/diagnostic/helix_slowdown.ngc", "linuxcnc-tp/quick-tests/tangent_helix.ngc",
+                        "linuxcnc-tp/violation_checks/maxvel_violation_helical.ngc",
+                        "linuxcnc-tp/arc-intersections/arc-arc-planeswitch.ngc", "linuxcnc-tp/arc-feed/full_xz.ngc"})
+    cases.push_back({p, "XY_slowZ.ini"});
   // The shortest servo period the issue asks for, 125 us, on lines, arcs, helices and NURBS.
   for (const char* p : {"linuxcnc-tp/arc-feed/arc_time.ngc", "linuxcnc-tp/quick-tests/linearc-stellabee.ngc",
                         "linuxcnc-tp/violation_checks/maxvel_violation_helical.ngc", "linuxcnc-nurbs/G5_nurbs-xy.ngc",
