@@ -391,5 +391,41 @@ TEST(ExtraAxes, PrepareLearnsTheMovedAxesAndRunValidatesAProgramChangedSince) {
   std::filesystem::remove(path);
 }
 
+// A linear axis the machine lacks (LinuxCNC's XY.ini has COORDINATES X Y) cannot move either: a
+// block whose path runs along it is refused before any setpoint, naming the file, line, axis and
+// the machine's axes. Until 2026-12-04 only A B C U V W were; a path along Z on XY.ini got a speed
+// cap of zero from the planner, and its setpoints jumped (the check then found X at 125 times its
+// velocity). A path in the plane the machine has runs, also after moves that leave Z where it is.
+TEST(ExtraAxes, AMoveAlongALinearAxisTheMachineLacksIsRefused) {
+  Machine xy = default_machine();
+  xy.axes.pop_back();  // X Y: no Z
+  const auto path = (std::filesystem::temp_directory_path() / "kontur_missing_linear_axis.ngc").string();
+  const std::pair<const char*, const char*> refused[] = {
+      {"G21 G90 G17\nG1 X10 F600\nG1 X20 Z5\nM2\n", ":3: the block moves Z (to 5)"},                 // a line
+      {"G21 G90 G17\nG1 X10 F600\nG2 X10 Y0 Z2 I5 J0\nM2\n", ":3: the block moves Z (to 2)"},      // a helix
+      {"G21 G90 G18\nG1 X10 F600\nG2 X10 Z0 I5 K0\nM2\n", ":3: the block moves Z (to 0)"},         // a full circle in XZ
+  };
+  for (const auto& [program, message] : refused) {
+    std::ofstream(path) << program;
+    Pipeline pipeline(xy);
+    long setpoints = 0;
+    PipelineEvents events;
+    events.setpoint = [&](const Setpoint&) { ++setpoints; };
+    try {
+      (void)pipeline.run(path, events);
+      FAIL() << "ran: " << program;
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(message), std::string::npos) << what;
+      EXPECT_NE(what.find("has no Z axis (its axes: X Y)"), std::string::npos) << what;
+    }
+    EXPECT_EQ(setpoints, 0);
+  }
+  std::ofstream(path) << "G21 G90 G17\nG0 X0 Y0 Z0\nG1 X10 F600\nG2 X10 Y0 I5 J0\nG1 Y5 Z0\nM2\n";
+  Pipeline pipeline(xy);
+  EXPECT_TRUE(pipeline.run(path).passed);
+  std::filesystem::remove(path);
+}
+
 }  // namespace
 }  // namespace kontur

@@ -55,6 +55,23 @@ std::shared_ptr<const Curve> shared_curve(const gcode::Block& b) {
       b.geometry);
 }
 
+// Does the curve run along linear axis i (0 X, 1 Y, 2 Z): its ends apart along it, or its unit
+// tangent's component above tolerances::missing_axis_tangent (the planner's rule for an axis the
+// machine lacks, plan::missing_axis_moved) at the ends or at any of 64 points of a span?
+bool curve_moves_along(const Curve& c, int i) {
+  const auto e = static_cast<Eigen::Index>(i);
+  if (c.point(c.u_min())[e] != c.point(c.u_max())[e]) return true;
+  const std::vector<double> bp = c.breakpoints();
+  constexpr int samples = 64;
+  for (std::size_t k = 0; k + 1 < bp.size(); ++k)
+    for (int q = 0; q <= samples; ++q) {
+      const Vec3 d = c.derivatives(bp[k] + (bp[k + 1] - bp[k]) * q / samples, 1)[1];
+      const double n = d.norm();
+      if (n > 0.0 && std::abs(d[e]) > tolerances::missing_axis_tangent * n) return true;
+    }
+  return false;
+}
+
 }  // namespace
 
 double corner_tolerance(const gcode::Block& b, const Machine& machine) {
@@ -68,10 +85,10 @@ Move move_of(const gcode::Block& b, const Machine& machine) {
   m.source_line = b.location.line;
   m.type = gcode::to_string(b.type);
   if (!m.curve) return m;  // no motion (a dwell)
-  // An axis the machine lacks cannot move.
-  for (int e = 0; e < extra_axis_count; ++e) {
-    const auto i = static_cast<std::size_t>(e);
-    if (b.extra_start[i] == b.extra_end[i] || machine.axis(extra_axis_letters[e]) != nullptr) continue;
+  // An axis the machine lacks cannot move: an extra axis whose end differs from its start, or a
+  // linear axis the path runs along (LinuxCNC does not even read the letter of an axis its INI's
+  // COORDINATES leave out; the planner's speed cap along it would be zero).
+  const auto refuse = [&](char letter, double to) {
     std::string axes;
     for (const AxisLimits& a : machine.axes) {
       if (!axes.empty()) axes += ' ';
@@ -79,10 +96,17 @@ Move move_of(const gcode::Block& b, const Machine& machine) {
     }
     throw InputError("axis-missing",
                      fmt::format("{}:{}: the block moves {} (to {}), but the machine {} ({}) has no {} axis (its axes: {})",
-                                 b.location.file ? *b.location.file : std::string("?"), b.location.line,
-                                 extra_axis_letters[e], b.extra_end[i], machine.name, machine.source,
-                                 extra_axis_letters[e], axes));
+                                 b.location.file ? *b.location.file : std::string("?"), b.location.line, letter, to,
+                                 machine.name, machine.source, letter, axes));
+  };
+  for (int e = 0; e < extra_axis_count; ++e) {
+    const auto i = static_cast<std::size_t>(e);
+    if (b.extra_start[i] == b.extra_end[i] || machine.axis(extra_axis_letters[e]) != nullptr) continue;
+    refuse(extra_axis_letters[e], b.extra_end[i]);
   }
+  for (int i = 0; i < 3; ++i)
+    if (const char letter = "XYZ"[i]; machine.axis(letter) == nullptr && curve_moves_along(*m.curve, i))
+      refuse(letter, b.end[i]);
   // The length, integrated once (lines and arcs: exact; NURBS and conics: the same quadrature of
   // the same curve as the block's length_mm, of the curve the planner runs).
   const bool exact = std::holds_alternative<LineSegment>(b.geometry) || std::holds_alternative<HelixArc>(b.geometry);

@@ -179,6 +179,10 @@ kontur_cli_case(run_rotary_g93_columns 0 "^t,x,y,z,a,v,block\n0\\.000000000,0,0,
 kontur_cli_case(run_axis_the_machine_lacks 1
                 "rotary_g93\\.ngc:8: the block moves A \\(to 30\\), but the machine .* has no A axis \\(its axes: X Y Z\\)" run
                 examples/programs/rotary_g93.ngc -o /tmp/kontur_cli_rotary_refused.csv)
+# ... and a linear axis the machine lacks (LinuxCNC's XY.ini: COORDINATES X Y), on the program's line.
+kontur_cli_case(run_linear_axis_refused 1
+                "tangent_helix\\.ngc:4: the block moves Z \\(to -6\\.8[0-9]*\\), but the machine .* has no Z axis \\(its axes: X Y\\)" run
+                ../shared/data/gcode/linuxcnc-tp/quick-tests/tangent_helix.ngc --machine ../shared/data/gcode/linuxcnc-tp/configs/XY.ini -o /tmp/kontur_cli_linear_axis_refused.csv)
 # --time-optimal: the reference time and the ratio (>= 1: the reference is a lower bound).
 kontur_cli_case(run_time_optimal 0 "\"time_optimal_s\": [0-9.]+,[^}]*\"time_ratio\": 1\\.[0-9]+" run examples/programs/square_arc.ngc --time-optimal -o /tmp/kontur_cli_run_time_optimal.csv --json)
 # ... and each block the reference's time on its move, after its chord error.
