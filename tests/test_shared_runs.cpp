@@ -91,6 +91,22 @@ TEST_P(SharedProgramRun, SetpointsKeepEveryLimitAndThePath) {
 
 INSTANTIATE_TEST_SUITE_P(Shared, SharedProgramRun, testing::ValuesIn(run_cases()), case_name);
 
+// A junction's jerk share holds for the pieces the motion reaches within three periods of it, not
+// only for the one beside it: in this V-carving program (inches) a line of 0.5 um after a small
+// corner, ahead of a smoothed run, left the run's pieces their whole jerk right at the corner, and
+// X reached 1.005 times its jerk on LinuxCNC's XYZ_medium.ini (found running every corpus program on
+// the trajectory-planner test machines).
+TEST(SharedProgramRun, JunctionShareReachesPastAPieceShorterThanAPeriod) {
+  const Machine machine = read_machine((shared_dir / "linuxcnc-tp" / "configs" / "XYZ_medium.ini").string());
+  Pipeline pipeline(machine);
+  const RunResult result = pipeline.run(
+      (std::filesystem::path(KONTUR_SOURCE_DIR) / "tests" / "data" / "corpus" / "linuxcnc" / "vcarve.ngc").string());
+  std::string failures;
+  for (const auto& f : result.check.failures(machine)) failures += "\n  " + f;
+  EXPECT_TRUE(result.passed) << failures;
+  EXPECT_LE(result.check.max_jerk_ratio, 1.0);
+}
+
 // The time-optimal reference is the fastest acceleration-limited profile along the path, so the
 // planner (within the same limits, and jerk-limited) can reach no point of the path earlier: at
 // the end of every move the reference's time so far (the summary's per-block time_optimal_s, added

@@ -225,6 +225,12 @@ inline constexpr double plan_path_jerk_share_min = 0.1;
 inline constexpr double plan_smooth_junction_jerk_share = 0.5;
 /// ... and the share of a real corner (a near stop anyway, so the moves keep most of their jerk).
 inline constexpr double plan_corner_jerk_share = 0.05;
+/// A junction's jerk share also holds for the pieces after it that the motion can reach within
+/// this many servo periods (passing each at its cap at the fastest): the setpoints' third
+/// differences reach that far, and a piece shorter than that beside the junction (a line of 0.5 um
+/// ahead of a smoothed run) would otherwise leave the next pieces their whole jerk right at it
+/// (vcarve.ngc on XYZ_medium.ini: X at 1.005 times its jerk).
+inline constexpr double plan_junction_share_reach_periods = 3.0;
 /// A junction direction change (per axis, |t2 - t1|) below which a corner counts as small.
 inline constexpr double plan_small_corner = 0.05;
 /// Tangents or curvature vectors that agree to this (per axis; [1] and [1/mm]) make a smooth junction.

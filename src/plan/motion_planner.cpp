@@ -305,6 +305,7 @@ void MotionPlanner::push(const program::Move& move) {
     }
     settle_last(in.jerk_share, in.smooth());
     if (!in.smooth()) close_chain(in.velocity);  // a corner or a curvature jump: the speed there is limited
+    reach_from(in);
   }
   const bool continues_chain = !open_.pieces.empty();
   for (std::size_t i = 0; i < pieces.size(); ++i) {
@@ -328,6 +329,9 @@ void MotionPlanner::push(const program::Move& move) {
     piece.geometry = p.geometry;
     piece.feed_mm_s = move.feed_mm_s;
     piece.start_share = i == 0 ? in.jerk_share : pieces[i - 1].end.jerk_share;
+    // (within the reach of a junction before it, that junction's share: reach_from)
+    const bool in_reach = reach_left_s_ > 0.0 && reach_share_ > piece.start_share;
+    if (in_reach) piece.start_share = reach_share_;
     piece.start_smooth = i == 0 ? continues_chain : pieces[i - 1].end.smooth();
     piece.length_mm = p.s1_mm - p.s0_mm;
     if (initial_hold_s_ > 0.0) {
@@ -342,8 +346,14 @@ void MotionPlanner::push(const program::Move& move) {
     piece.planned_share = std::max(piece.start_share, last ? 0.0 : p.end.jerk_share);
     piece.planned_end_smooth = last || p.end.smooth();
     piece.limits = piece_limits(piece, piece.planned_share, piece.planned_end_smooth);
+    // (the motion takes at least the piece's length at its cap to pass it)
+    if (reach_left_s_ > 0.0)
+      reach_left_s_ = piece.limits.max_velocity > 0.0 ? reach_left_s_ - piece.length_mm / piece.limits.max_velocity : 0.0;
     add_piece(std::move(piece));  // (an inner piece's end is known: its limits are final)
-    if (!last && !p.end.smooth()) close_chain(p.end.velocity);
+    if (!last && !p.end.smooth()) {
+      close_chain(p.end.velocity);
+      reach_from(p.end);
+    }
   }
   last_end_ = c.derivatives_left(c.u_max(), 2);
   last_stationary_end_ = pieces.back().stationary_end;
@@ -467,6 +477,12 @@ AccelerationBands MotionPlanner::chain_bands(const Chain& chain) const {
     b.acceleration[i] = std::min(b.acceleration[i], b.acceleration[i - 1]);
   }
   return b;
+}
+
+void MotionPlanner::reach_from(const Junction& j) noexcept {
+  if (j.smooth()) return;
+  reach_share_ = j.jerk_share;
+  reach_left_s_ = tolerances::plan_junction_share_reach_periods * period_;
 }
 
 PathLimits MotionPlanner::piece_limits(const Piece& piece, double share, bool end_smooth) const {

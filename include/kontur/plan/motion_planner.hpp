@@ -144,6 +144,13 @@ class MotionPlanner {
   bool last_tool_still_ = false;         // only its extra axes moved
   bool last_stationary_end_ = false;     // its curve ends at a stationary point (C' = 0)
   bool last_exact_stop_ = true;          // the last move pushed ends at rest
+  // The share of the last junction that is not smooth, and the time [s] after it (a lower bound:
+  // the pieces passed at their caps) within which the pieces still plan with it
+  // (tolerances::plan_junction_share_reach_periods).
+  double reach_share_ = 0.0;
+  double reach_left_s_ = 0.0;
+  /// Starts the reach of a junction that is not smooth.
+  void reach_from(const Junction& j) noexcept;
   double initial_hold_s_ = 0.0;          // dwell before the next move, with nothing pending [s]
   long initial_hold_line_ = 0;
   program::MoveId last_move_ = program::no_move;  // the last move pushed with a length
