@@ -401,9 +401,9 @@ TEST(ExtraAxes, AMoveAlongALinearAxisTheMachineLacksIsRefused) {
   xy.axes.pop_back();  // X Y: no Z
   const auto path = (std::filesystem::temp_directory_path() / "kontur_missing_linear_axis.ngc").string();
   const std::pair<const char*, const char*> refused[] = {
-      {"G21 G90 G17\nG1 X10 F600\nG1 X20 Z5\nM2\n", ":3: the block moves Z (to 5)"},                 // a line
-      {"G21 G90 G17\nG1 X10 F600\nG2 X10 Y0 Z2 I5 J0\nM2\n", ":3: the block moves Z (to 2)"},      // a helix
-      {"G21 G90 G18\nG1 X10 F600\nG2 X10 Z0 I5 K0\nM2\n", ":3: the block moves Z (to 0)"},         // a full circle in XZ
+      {"G21 G90 G17\nG1 X10 F600\nG1 X20 Z5\nM2\n", ":3: the block moves Z (to 5)"},             // a line
+      {"G21 G90 G17\nG1 X10 F600\nG2 X10 Y0 Z2 I5 J0\nM2\n", ":3: the block moves Z (to 2)"},  // a helix
+      {"G21 G90 G18\nG1 X10 F600\nG2 X10 Z0 I5 K0\nM2\n", ":3: the block moves Z (to 0)"},     // a circle in XZ
   };
   for (const auto& [program, message] : refused) {
     std::ofstream(path) << program;

@@ -347,8 +347,10 @@ void MotionPlanner::push(const program::Move& move) {
     piece.planned_end_smooth = last || p.end.smooth();
     piece.limits = piece_limits(piece, piece.planned_share, piece.planned_end_smooth);
     // (the motion takes at least the piece's length at its cap to pass it)
-    if (reach_left_s_ > 0.0)
-      reach_left_s_ = piece.limits.max_velocity > 0.0 ? reach_left_s_ - piece.length_mm / piece.limits.max_velocity : 0.0;
+    if (reach_left_s_ > 0.0) {
+      const double cap = piece.limits.max_velocity;  // [mm/s]
+      reach_left_s_ = cap > 0.0 ? reach_left_s_ - piece.length_mm / cap : 0.0;
+    }
     add_piece(std::move(piece));  // (an inner piece's end is known: its limits are final)
     if (!last && !p.end.smooth()) {
       close_chain(p.end.velocity);
