@@ -416,14 +416,14 @@ double path_jerk_at(const PathGeometry& g, double v, const Vec3& cross, const Ma
 }
 
 // The speed [mm/s] at which the centripetal part at each pair the acceleration is bounded at
-// (linear_path_acceleration_at) is within the middle of `centripetal_share` and 1 of its axis's
-// limit, so that each pair leaves the path at least half the acceleration the share means to
-// (infinity where no pair bounds it). speed_cap bounds only the sampled maximum by the share; a
-// pair's curvature is raised for what may lie between the samples, and on an axis far slower than
-// the others (XY_slowZ.ini: Z has 1/300 of X's acceleration) that raise alone exceeded the axis's
-// limit at the cap the maximum allows: no acceleration was left at the cap, and the first axis's
-// was taken instead (helix_slowdown ran X at 1.10 times its limit).
-double pair_centripetal_cap(const PathGeometry& g, const Machine& machine, double centripetal_share) noexcept {
+// (linear_path_acceleration_at) reaches its axis's limit (infinity where no pair bounds it); at
+// sqrt((1 + c) / 2) of it, the middle of the centripetal share c and 1, each pair leaves the path
+// at least half the acceleration the share means to. speed_cap bounds only the sampled maximum by
+// the share; a pair's curvature is raised for what may lie between the samples, and on an axis far
+// slower than the others (XY_slowZ.ini: Z has 1/300 of X's acceleration) that raise alone exceeded
+// the axis's limit at the cap the maximum allows: no acceleration was left at the cap, and the
+// first axis's was taken instead (helix_slowdown ran X at 1.10 times its limit).
+double pair_centripetal_speed(const PathGeometry& g, const Machine& machine) noexcept {
   double v = kInf;
   for (const AxisLimits& axis : machine.axes) {
     const int i = linear_axis_index(axis.name);
@@ -431,7 +431,7 @@ double pair_centripetal_cap(const PathGeometry& g, const Machine& machine, doubl
     const PathGeometry::AxisPairs& p = g.pairs[static_cast<std::size_t>(i)];
     double k = 0.0;
     for (std::size_t q = 0; q < static_cast<std::size_t>(p.n); ++q) k = std::max(k, p.k[q]);
-    if (k > 0.0) v = std::min(v, std::sqrt(0.5 * (1.0 + centripetal_share) * axis.max_acceleration / k));
+    if (k > 0.0) v = std::min(v, std::sqrt(axis.max_acceleration / k));
   }
   return v;
 }
@@ -456,6 +456,7 @@ PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s
   PathLimits best;
   double best_time = kInf;
   const bool curved = !g.curvature.isZero();
+  const double pair_speed = pair_centripetal_speed(g, machine);  // [mm/s]
   for (const double share : tolerances::plan_centripetal_shares) {
     if (!curved && share != tolerances::plan_centripetal_shares[0]) break;  // one choice on a line
     for (const double rate_share : tolerances::plan_curvature_rate_jerk_shares) {
@@ -464,8 +465,8 @@ PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s
           (!curved || rate_share > 1.0 - junction_jerk_share - tolerances::plan_cross_jerk_share -
                                        tolerances::plan_path_jerk_share_min))
         break;
-      const double v = std::min(speed_cap(g, feed_mm_s, machine, share, rate_share),
-                                pair_centripetal_cap(g, machine, share));
+      const double v =
+          std::min(speed_cap(g, feed_mm_s, machine, share, rate_share), std::sqrt(0.5 * (1.0 + share)) * pair_speed);
       const PathLimits l = limits_at_cap(g, v, machine, junction_jerk_share);
       // Time estimate: the length at the cap, plus change_weight times the time to reach the cap
       // from rest (jerk-limited; by speed bands where the piece runs alone in its chain, as the
@@ -484,7 +485,7 @@ PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s
     }
   }
   // A stretch along no axis the machine limits (or of speed 0): the first axis's limits. (An axis
-  // does not bound the acceleration to zero or below at the cap: pair_centripetal_cap leaves every
+  // does not bound the acceleration to zero or below at the cap: pair_centripetal_speed leaves every
   // pair some.)
   if (!std::isfinite(best.max_acceleration) || !(best.max_acceleration > 0.0))
     best.max_acceleration = machine.axes.front().max_acceleration;

@@ -8,11 +8,6 @@
 namespace kontur::plan {
 namespace {
 
-// Highest speed at a move's start from which it can brake, within its length, to v_after or to
-// any higher end speed below it (see braking_velocity: monotone in v_after, so rest after the
-// window is the most conservative assumption).
-double brake_from(double v_after, const MoveConstraint& m) { return braking_velocity(v_after, m); }
-
 // Junction speeds of a run of moves that starts at v_start and ends at v_end: caps, then a
 // backward pass (braking) and a forward pass (acceleration).
 std::vector<double> plan_junctions(std::span<const MoveConstraint> moves, double v_start, double v_end) {
@@ -23,8 +18,10 @@ std::vector<double> plan_junctions(std::span<const MoveConstraint> moves, double
   // Caps at every junction: the junction's own limit and both neighbours' caps.
   for (std::size_t i = 1; i < n; ++i)
     v[i] = std::min({moves[i - 1].max_end_velocity, moves[i - 1].limits.max_velocity, moves[i].limits.max_velocity});
-  // Backward: each junction must allow braking to the next within the move between.
-  for (std::size_t i = n; i-- > 1;) v[i] = std::min(v[i], brake_from(v[i + 1], moves[i]));
+  // Backward: each junction must allow braking to the next within the move between (or to any end
+  // speed below it: braking_velocity is monotone in v_after, so rest after a window is the most
+  // conservative assumption).
+  for (std::size_t i = n; i-- > 1;) v[i] = std::min(v[i], braking_velocity(v[i + 1], moves[i]));
   // Forward: and reaching it from the one before.
   for (std::size_t i = 0; i < n; ++i) v[i + 1] = std::min(v[i + 1], reachable_velocity(v[i], moves[i]));
   return v;
@@ -73,7 +70,7 @@ double Lookahead::junction_cap(std::size_t i) const noexcept {
 
 double Lookahead::brake_at(std::size_t i, double v_after) const {
   ++evaluations_;
-  return brake_from(v_after, window_[i]);
+  return braking_velocity(v_after, window_[i]);
 }
 
 bool Lookahead::tail_changed_since_seen() const noexcept {

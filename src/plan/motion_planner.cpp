@@ -330,8 +330,7 @@ void MotionPlanner::push(const program::Move& move) {
     piece.feed_mm_s = move.feed_mm_s;
     piece.start_share = i == 0 ? in.jerk_share : pieces[i - 1].end.jerk_share;
     // (within the reach of a junction before it, that junction's share: reach_from)
-    const bool in_reach = reach_left_s_ > 0.0 && reach_share_ > piece.start_share;
-    if (in_reach) piece.start_share = reach_share_;
+    if (reach_left_s_ > 0.0) piece.start_share = std::max(piece.start_share, reach_share_);
     piece.start_smooth = i == 0 ? continues_chain : pieces[i - 1].end.smooth();
     piece.length_mm = p.s1_mm - p.s0_mm;
     if (initial_hold_s_ > 0.0) {
@@ -405,7 +404,7 @@ void MotionPlanner::Chain::count(const Piece& p, bool first) noexcept {
   own_time_s = (first ? 0.0 : own_time_s) + (cap > 0.0 ? p.length_mm / cap : 0.0);
 }
 
-void MotionPlanner::append_stretches(const Chain& chain, std::vector<CapStretch>& out) const {
+void MotionPlanner::append_stretches(const Chain& chain, std::vector<CapStretch>& out) {
   for (const Piece& p : chain.pieces)
     out.push_back({p.length_mm, p.limits.max_velocity, p.limits.max_acceleration, p.limits.max_jerk,
                    p.bands});

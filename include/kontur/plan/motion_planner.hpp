@@ -94,7 +94,7 @@ class MotionPlanner {
   [[nodiscard]] trajectory::PathProfile chain_profile(const Chain& chain, const trajectory::PathProfile& planned) const;
   // Appends the chain's pieces as stretches, each with its own cap and limits, and a curved one's
   // limits at lower speeds (its speed bands).
-  void append_stretches(const Chain& chain, std::vector<CapStretch>& out) const;
+  static void append_stretches(const Chain& chain, std::vector<CapStretch>& out);
   // The profile that follows each stretch's cap and limits from v0 to v1 [mm/s] (none where it
   // cannot be planned), stepped at a share of the ramp time of `least`, the smallest limits.
   [[nodiscard]] std::optional<trajectory::PathProfile> following_profile(std::span<const CapStretch> stretches,
