@@ -9,6 +9,7 @@
 #include <cmath>
 #include <kontur/plan/banded_profile.hpp>
 #include <kontur/plan/constraints.hpp>
+#include "support/machine_limits.hpp"
 #include <random>
 
 namespace kontur::plan {
@@ -122,14 +123,8 @@ TEST(BandedProfile, ACirclesBandsKeepEveryAxisWithinItsAcceleration) {
   m.chord_tolerance_mm = 0.001;
   m.path_tolerance_mm = 0.01;
   m.servo_period_s = 0.001;
-  for (const char name : {'X', 'Y', 'Z'}) {
-    AxisLimits a;
-    a.name = name;
-    a.max_velocity = 200.0;
-    a.max_acceleration = 762.0;
-    a.max_jerk = 76200.0;
-    m.axes.push_back(a);
-  }
+  for (const char name : {'X', 'Y', 'Z'}) m.axes.push_back(AxisLimits{.name = name});
+  testing::set_every_axis(m, 200.0, 762.0, 76200.0);
   const double r = 25.4;
   PathGeometry g;
   std::vector<std::array<double, 2>> px, py;

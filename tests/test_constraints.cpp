@@ -10,6 +10,7 @@
 #include <kontur/plan/time_optimal.hpp>
 
 #include "support/input_error.hpp"
+#include "support/machine_limits.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -131,11 +132,7 @@ TEST(Constraints, AxisFarSlowerThanTheOthersLeavesAHelixAccelerationAtItsCap) {
   // circle whose centripetal part already took 600 of it (helix_slowdown: X at 1.10 times its limit).
   // At the cap and acceleration path_limits gives, every axis stays within its limit at every point.
   Machine m = full_machine();
-  for (AxisLimits& axis : m.axes) {
-    axis.max_velocity = 203.2;
-    axis.max_acceleration = 762.0;
-    axis.max_jerk = 76200.0;
-  }
+  testing::set_every_axis(m, 203.2, 762.0, 76200.0);
   m.axes[2].max_velocity = 0.254;
   m.axes[2].max_acceleration = 2.54;
   m.axes[2].max_jerk = 254.0;

@@ -11,6 +11,7 @@
 #include <random>
 
 #include "support/planner_run.hpp"
+#include "support/machine_limits.hpp"
 
 namespace kontur::plan {
 namespace {
@@ -275,11 +276,7 @@ namespace {
 // the limit. On such a machine a corner is a stop; on an ordinary one (J T << A) it is not.
 TEST(MotionPlanner, ReversalOnAMachineWhoseAccelerationChangesWithinAPeriodKeepsTheAcceleration) {
   Machine stiff = default_machine();
-  for (AxisLimits& a : stiff.axes) {
-    a.max_velocity = 75.0;
-    a.max_acceleration = 735.0;
-    a.max_jerk = 1e8;
-  }
+  testing::set_every_axis(stiff, 75.0, 735.0, 1e8);
   const double feed = 427.0 / 60.0;
   for (const Machine& m : {stiff, default_machine()}) {
     testing::PlannerRun p(m);
