@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <deque>
+#include <kontur/geometry/corner_blend_curve.hpp>
 #include <kontur/geometry/curve_piece.hpp>
 #include <kontur/geometry/golden_section.hpp>
 #include <kontur/geometry/helix_arc.hpp>
@@ -14,12 +15,14 @@
 #include <kontur/plan/constraints.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/program/corner_blender.hpp>
+#include <kontur/tolerances.hpp>
 #include <kontur/verify/checker.hpp>
 #include <limits>
 #include <memory>
 #include <random>
 #include <vector>
 
+#include "support/machine_limits.hpp"
 #include "support/planner_run.hpp"
 
 namespace kontur {
@@ -176,6 +179,75 @@ struct RunResult {
   verify::Report report;
   double time_s = 0.0;
 };
+
+// Every shape of the blender's family (corner_blend_shape): the blend starts and ends exactly on
+// its lines (P - d t1, P + d t2), with B' and B'' along them (zero curvature), its middle is where
+// the control points put it, and its derivatives are the curve's (central differences).
+TEST(CornerBlend, AnyShapeOfTheFamilyStartsAndEndsOnItsLinesWithZeroCurvature) {
+  std::mt19937_64 rng(20261205);
+  std::uniform_real_distribution<double> third(tolerances::blend_shape_third_min, tolerances::blend_shape_third_max),
+      trim(1e-3, 20.0), unit(0.0, 1.0);
+  for (int i = 0; i < 500; ++i) {
+    const Vec3 p = 300.0 * random_unit(rng);
+    const Vec3 t1 = random_unit(rng), t2 = random_unit(rng);
+    const double d = trim(rng);
+    const CornerBlendShape shape = corner_blend_shape(third(rng));
+    const CornerBlendCurve c(p, t1, t2, d, shape);
+    const Derivatives d0 = c.derivatives(0.0, 3), d1 = c.derivatives(1.0, 3);
+    EXPECT_EQ(d0[0], Vec3(p - d * t1));
+    EXPECT_EQ(d1[0], Vec3(p + d * t2));
+    for (const auto& [dd, t] : {std::pair{d0, t1}, std::pair{d1, t2}}) {
+      EXPECT_LT((dd[1].normalized() - t).norm(), 1e-12);
+      EXPECT_LT(dd[1].cross(dd[2]).norm() / std::pow(dd[1].norm(), 3), 1e-9 / d);  // curvature [1/mm]
+    }
+    const Vec3 middle = p + (1.0 + 5.0 * shape.second + 10.0 * shape.third) / 32.0 * d * (t2 - t1);
+    EXPECT_LT((c.point(0.5) - middle).norm(), 1e-12 * (d + p.norm()));
+    const double u = 0.01 + 0.98 * unit(rng), h = 1e-5;
+    const Derivatives at = c.derivatives(u, 3), before = c.derivatives(u - h, 3), after = c.derivatives(u + h, 3);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_LT((at[k + 1] - (after[k] - before[k]) / (2.0 * h)).norm(), 1e-6 * (1.0 + at[k + 1].norm())) << k;
+  }
+}
+
+// The blender sizes each shape of the family to the tolerance and takes the one that passes the
+// corner fastest. Against the quintic with equally spaced control points (the blend until
+// 2026-12-05) sized the same way: within the tolerance, never a lower speed cap, and on a machine
+// whose jerk is its acceleration per 0.01 s (a LinuxCNC INI without MAX_JERK) about 1.9 times its
+// cap at a turn of 4.5 degrees (whose curvature rose from the lines over a sixth of the blend:
+// sam-circle_lines, a spiral of 370 such corners, took 12.9 s on XYZ.ini, now 8.2 s).
+TEST(CornerBlend, TheShapeChosenForTheMachinePassesACornerAtLeastAsFastAsEquallySpacedControlPoints) {
+  Machine soft = default_machine(), stiff = default_machine();
+  soft.servo_period_s = stiff.servo_period_s = 0.001;
+  testing::set_every_axis(soft, 203.2, 762.0, 76200.0);    // jerk A / 0.01 s
+  testing::set_every_axis(stiff, 203.2, 762.0, 762000.0);  // jerk A / T
+  const double tol_mm = 0.01, feed_mm_s = 200.0;
+  int blends = 0;
+  for (const Machine* m : {&soft, &stiff}) {
+    const auto speed = [m](const Curve& c, double f) { return plan::curve_speed_cap(c, f, *m); };
+    for (const double turn_deg : {2.0, 4.5, 15.0, 45.0, 90.0, 120.0}) {
+      SCOPED_TRACE(std::to_string(turn_deg) + " degrees, jerk " + std::to_string(m->axes[0].max_jerk));
+      const double a = turn_deg * M_PI / 180.0;
+      const Vec3 t1 = Vec3::UnitX(), t2(std::cos(a), std::sin(a), 0.0);
+      program::CornerBlender blender(true, m, speed);
+      std::vector<program::Move> out;
+      blender.push(line_move(-20.0 * t1, Vec3::Zero(), tol_mm, feed_mm_s), out);
+      blender.push(line_move(Vec3::Zero(), 20.0 * t2, tol_mm, feed_mm_s), out);
+      blender.flush(out);
+      if (out.size() != 3U) continue;  // (a stop is faster than any blend: blend_pays)
+      ++blends;
+      const Curve& chosen = *out[1].curve;
+      EXPECT_LE(verify::blend_deviation(chosen, *out[1].corner), tol_mm * (1.0 + 1e-9));
+      const double d_equal = tolerances::blend_tolerance_share * tol_mm / unit_blend_deviation(t1, t2);
+      const CornerBlendCurve equal(Vec3::Zero(), t1, t2, d_equal);
+      const double v_chosen = speed(chosen, feed_mm_s), v_equal = speed(equal, feed_mm_s);
+      EXPECT_GE(v_chosen, 0.999 * v_equal);
+      if (m == &soft && turn_deg == 4.5) {
+        EXPECT_GT(v_chosen, 1.7 * v_equal);
+      }
+    }
+  }
+  EXPECT_GE(blends, 6);  // (7 of the 12 corners blend)
+}
 
 // A square and a little more (its corners turn by 90 degrees), or a 36-gon of radius 20 mm
 // (10 degrees), as lines at 150 mm/s.

@@ -501,6 +501,17 @@ inline constexpr int blend_arc_attempts = 12;
 /// (geometry/transition_curve.hpp; its distance varies slowly: the peak between samples is within
 /// a few 1e-4 of it, inside the 1 - blend_tolerance_share the blender leaves).
 inline constexpr int blend_arc_deviation_samples = 64;
+/// The corner blender's family of blend shapes (geometry/corner_blend_curve.hpp: the third control
+/// point on each line at e d from the corner, the second at (base + slope e) d), and the range of e
+/// it searches for the fastest blend of each corner (golden sections, blend_shape_search_steps):
+/// a small e lets the curvature rise slowly from the lines (the jerk of a stiff-less machine), a
+/// large one keeps its peak low (the acceleration). Fitted to the fastest quintic of the form at
+/// turns of 2 .. 120 degrees and jerks of 10 .. 10^4 times the acceleration per second.
+inline constexpr double blend_shape_second_base = 0.57;
+inline constexpr double blend_shape_second_slope = 0.2;
+inline constexpr double blend_shape_third_min = 0.02;
+inline constexpr double blend_shape_third_max = 0.5;
+inline constexpr int blend_shape_search_steps = 12;
 /// Share of the tolerance a blend is made to use (the rest covers the sampling of its deviation).
 inline constexpr double blend_tolerance_share = 0.999;
 /// Samples of a blend (plus a golden-section search around the largest) when the blender measures

@@ -1,6 +1,8 @@
 #include <algorithm>
 #include <cmath>
+#include <kontur/geometry/corner_blend_curve.hpp>
 #include <kontur/geometry/curve_piece.hpp>
+#include <kontur/geometry/golden_section.hpp>
 #include <kontur/geometry/helix_arc.hpp>
 #include <kontur/geometry/length.hpp>
 #include <kontur/geometry/line_segment.hpp>
@@ -101,6 +103,49 @@ bool blend_pays(double blend_mm, double v_blend, double d, const Side& a, const 
   return t_blend < t_junction;
 }
 
+// The blend of the corner `corner` between lines of lengths la and lb [mm] in the unit directions
+// t1 and t2, of the given shape: as large as the tolerance [mm] allows (its deviation from the
+// lines, which grows with d), trimming at most tolerances::blend_max_trim_share of each line.
+struct LineBlend {
+  std::shared_ptr<const CornerBlendCurve> curve;
+  double length_mm = 0.0;
+};
+// (measured: unit_blend_deviation; else estimated by the distance of its middle from the lines, where
+// the blend, convex and symmetric, strays farthest: what the search compares shapes by)
+LineBlend line_blend(const Vec3& corner, const Vec3& t1, const Vec3& t2, double la, double lb, double tolerance_mm,
+                     const CornerBlendShape& shape, bool measured = true) {
+  // B(1/2) = P + (1 + 5 s + 10 e) / 32 d (t2 - t1), at m sin(turn) of each line
+  const double g = measured ? unit_blend_deviation(t1, t2, shape)
+                            : (1.0 + 5.0 * shape.second + 10.0 * shape.third) / 32.0 * (t2 - t2.dot(t1) * t1).norm();
+  const double half = tolerances::blend_max_trim_share;
+  double d = std::min(half * la, half * lb);
+  if (g > 0.0) d = std::min(d, tolerances::blend_tolerance_share * tolerance_mm / g);
+  auto curve = std::make_shared<const CornerBlendCurve>(corner, t1, t2, d, shape);
+  const double blend_mm = length(*curve);
+  return {std::move(curve), blend_mm};
+}
+
+// The blend of the family (corner_blend_shape) that passes the corner fastest: the least time
+// along it at its speed cap, less the time the lines it trims (2 d) would take at `lines_mm_s`
+// [mm/s] (the slower line's cap; at least the blend's). Golden sections over the family's
+// parameter; the time falls as the blend's cap rises while its curvature or its curvature change
+// binds, and rises again once the other does.
+LineBlend fastest_line_blend(const Vec3& corner, const Vec3& t1, const Vec3& t2, double la, double lb,
+                             double tolerance_mm, double feed_mm_s, double lines_mm_s, const BlendSpeed& speed) {
+  const auto time_s = [&](const LineBlend& b) {
+    const double v = speed(*b.curve, feed_mm_s);
+    if (!(v > 0.0)) return std::numeric_limits<double>::infinity();
+    return b.length_mm / v - 2.0 * b.curve->trim_mm() / std::max(lines_mm_s, v);
+  };
+  const auto blend_time_s = [&](double third) {
+    return time_s(line_blend(corner, t1, t2, la, lb, tolerance_mm, corner_blend_shape(third), false));
+  };
+  const double third = golden_section_minimum(blend_time_s, tolerances::blend_shape_third_min,
+                                              tolerances::blend_shape_third_max, tolerances::blend_shape_search_steps)
+                           .first;
+  return line_blend(corner, t1, t2, la, lb, tolerance_mm, corner_blend_shape(third));
+}
+
 // The blend move of a corner: the source line and feed of the outgoing move.
 Move blend_move(std::shared_ptr<const Curve> blend, double length_mm, const Move& outgoing, ProgrammedCorner corner) {
   Move bm;
@@ -144,15 +189,16 @@ void CornerBlender::push(const Move& move, std::vector<Move>& out) {
       if (may_blend && joined && la >= tolerances::blend_min_line_mm && lb >= tolerances::blend_min_line_mm) {
         const Vec3 t1 = a / la, t2 = b / lb;
         if ((t2 - t1).norm() > tolerances::plan_junction_smooth && t1.dot(t2) >= tolerances::blend_min_turn_cos) {
-          const double g = unit_blend_deviation(t1, t2);
-          const double half = tolerances::blend_max_trim_share;
-          double d = std::min(half * la, half * lb);
-          if (g > 0.0) d = std::min(d, tolerances::blend_tolerance_share * tolerance_mm / g);
-          auto blend = std::make_shared<const CornerBlendCurve>(h.to, t1, t2, d);
-          if (machine_ != nullptr && speed_ &&
-              !blend_pays(length(*blend), speed_(*blend, move.feed_mm_s), d,
-                          side_of(h.move, h.straight_before_mm + la, 0.0, speed_), side_of(move, lb, 0.0, speed_),
-                          JunctionPass{0.0, tolerances::plan_corner_jerk_share}, *machine_)) {
+          const bool planned = machine_ != nullptr && speed_;
+          const Side before = planned ? side_of(h.move, h.straight_before_mm + la, 0.0, speed_) : Side{},
+                     after = planned ? side_of(move, lb, 0.0, speed_) : Side{};
+          const LineBlend chosen = planned ? fastest_line_blend(h.to, t1, t2, la, lb, tolerance_mm, move.feed_mm_s,
+                                                           std::min(before.cap_mm_s, after.cap_mm_s), speed_)
+                                      : line_blend(h.to, t1, t2, la, lb, tolerance_mm, CornerBlendShape{});
+          const auto& blend = chosen.curve;
+          const double d = blend->trim_mm();
+          if (planned && !blend_pays(chosen.length_mm, speed_(*blend, move.feed_mm_s), d, before, after,
+                                     JunctionPass{0.0, tolerances::plan_corner_jerk_share}, *machine_)) {
             flush(out);
             held_ = Held{move, line->start(), line->start(), line->end(), 0.0, true};
             return;
@@ -160,7 +206,7 @@ void CornerBlender::push(const Move& move, std::vector<Move>& out) {
           const Vec3 end_in = blend->point(0.0), start_out = blend->point(1.0);
           out.push_back(held_until(end_in, 0.0));
           out.push_back(
-              blend_move(blend, length(*blend), move,
+              blend_move(blend, chosen.length_mm, move,
                          ProgrammedCorner{std::make_shared<const LineSegment>(h.from, h.to),
                                           std::make_shared<const LineSegment>(h.to, line->end()), tolerance_mm}));
           held_ = Held{move, start_out, line->start(), line->end(), 0.0, true};
