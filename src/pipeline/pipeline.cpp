@@ -17,16 +17,34 @@
 namespace kontur {
 namespace {
 
+// A dwell (G4) of the program: the moves before it [count] and its time [s].
+struct DwellAfter {
+  std::size_t moves_before = 0;
+  double seconds = 0.0;
+};
+
 // The time of the fastest acceleration-limited profile along the path [s]: a corner is passed with
 // the velocity jump of one servo period that keeps the acceleration (what the online planner's
-// junction rule allows on such a machine).
-plan::TimeOptimalProfile time_optimal_reference(const std::vector<program::Move>& moves, const Machine& machine) {
+// junction rule allows on such a machine). It stops at each dwell, as the planner does, and waits
+// the dwell's time there, counted to the move before it (to the first move before any), as the
+// summary counts the planner's.
+plan::TimeOptimalProfile time_optimal_reference(const std::vector<program::Move>& moves,
+                                                const std::vector<DwellAfter>& dwells, const Machine& machine) {
   std::vector<plan::TimeOptimalMove> reference;
   reference.reserve(moves.size());
   for (const program::Move& m : moves) reference.push_back({m.curve.get(), m.feed_mm_s, m.exact_stop});
+  for (const DwellAfter& d : dwells)
+    if (d.moves_before > 0 && d.moves_before <= reference.size()) reference[d.moves_before - 1].exact_stop = true;
   plan::TimeOptimalOptions options;
   options.corners = plan::CornerRule::servo_period;
-  return plan::time_optimal_profile(reference, machine, options);
+  plan::TimeOptimalProfile profile = plan::time_optimal_profile(reference, machine, options);
+  for (const DwellAfter& d : dwells) {
+    profile.total_time_s += d.seconds;
+    if (profile.move_time_s.empty()) continue;
+    const std::size_t k = d.moves_before > 0 ? std::min(d.moves_before, profile.move_time_s.size()) - 1 : 0;
+    profile.move_time_s[k] += d.seconds;
+  }
+  return profile;
 }
 
 }  // namespace
@@ -138,8 +156,16 @@ RunResult Pipeline::run(const std::string& program, const PipelineEvents& events
     }
   };
   program::PathHandlers handlers;
-  handlers.move = [&](const program::Move& m) { planner.push(m); };
-  handlers.dwell = [&](const program::Dwell& d) { planner.dwell(d.seconds, d.source_line); };
+  std::size_t moves_taken = 0;     // [count] so far
+  std::vector<DwellAfter> dwells;  // (for the time-optimal reference)
+  handlers.move = [&](const program::Move& m) {
+    planner.push(m);
+    ++moves_taken;
+  };
+  handlers.dwell = [&](const program::Dwell& d) {
+    planner.dwell(d.seconds, d.source_line);
+    if (d.seconds > 0.0) dwells.push_back({moves_taken, d.seconds});
+  };
   handlers.block = [&](const gcode::Block& b) {
     drain();
     if (events.progress) events.progress(b.location.line);
@@ -156,7 +182,7 @@ RunResult Pipeline::run(const std::string& program, const PipelineEvents& events
   const bool extra = std::any_of(path_.moves().begin(), path_.moves().end(),
                                  [](const program::Move& m) { return program::moves_extra_axes(m); });
   if (options_.time_optimal && !extra) {
-    plan::TimeOptimalProfile reference = time_optimal_reference(path_.moves(), machine_);
+    plan::TimeOptimalProfile reference = time_optimal_reference(path_.moves(), dwells, machine_);
     extras.time_optimal_s = reference.total_time_s;
     extras.move_time_optimal_s = std::move(reference.move_time_s);
   }
