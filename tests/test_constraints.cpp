@@ -184,6 +184,25 @@ TEST(Constraints, PairedBoundHoldsAtEveryPointOfRandomNurbs) {
   EXPECT_GE(worst, 0.9);  // (and the bound is not slack everywhere)
 }
 
+// The share choice weighs the speed changes at a piece's ends from the speed its junctions allow:
+// from rest (a stop or a corner) a quarter circle alone in its chain takes a middle centripetal
+// share (more acceleration left to reach its cap), but between two small jumps of curvature (a
+// spiral of arcs, each run through almost at the arcs' cap) the largest. Until 2026-12-05 every
+// end was weighed from rest: arceye-circle-slowdown ran its arcs at 0.81 of the reference's speed
+// on the jerk = A / T machine (5.983 s, now 5.525 s).
+TEST(Constraints, AnArcBetweenSmallCurvatureJumpsTakesTheLargestCentripetalShare) {
+  Machine m = full_machine();
+  testing::set_every_axis(m, 203.2, 762.0, 762000.0);
+  const double R = 9.65;  // [mm]
+  const HelixArc arc(CircleFrame{}, R, 0.5 * std::numbers::pi);
+  const PathGeometry g = path_geometry(arc, arc.u_min(), arc.u_max());
+  const PathLimits from_rest = path_limits(g, arc.length_mm(), 1270.0, m, 0.0, 1.0, true, 0.0);
+  const PathLimits largest = path_limits(g, arc.length_mm(), 1270.0, m, 0.0, 0.0, true);  // no change counted
+  EXPECT_LT(from_rest.max_velocity, 0.95 * largest.max_velocity);
+  const PathLimits near_cap = path_limits(g, arc.length_mm(), 1270.0, m, 0.0, 1.0, true, 0.97 * largest.max_velocity);
+  EXPECT_EQ(near_cap.max_velocity, largest.max_velocity);
+}
+
 // On a circle of radius R the curvature vector turns at |dK/ds| = 1/R^2, so K'_i v^3 caps the
 // speed where the jerk is small against the acceleration. A piece inside a chain (ends weighed
 // little) may give that term more of the jerk than the first share, as long as the path keeps

@@ -189,5 +189,23 @@ TEST(SharedProgramReference, ADwellStopsTheReferenceAndCountsItsTime) {
   std::filesystem::remove(stop);
 }
 
+// A spiral of quarter circles (arceye-circle-slowdown: a small jump of curvature at every arc's
+// end, run through almost at the arcs' cap) on the jerk = A / T machine: each arc takes the largest
+// centripetal share, since its ends change the speed little (MotionPlanner::piece_limits weighs
+// them from the junctions' speed). Weighed from rest, they took the middle share: 1.19 of the
+// reference (5.983 s), now 1.10 (5.525 s).
+TEST(SharedProgramReference, ASpiralOfArcsRunsNearTheReferenceThroughItsCurvatureJumps) {
+  const Machine machine = read_machine((std::filesystem::path(KONTUR_SOURCE_DIR) / "examples" / "machines" /
+                                        "linuxcnc_xyz_acceleration_limited.toml")
+                                           .string());
+  PipelineOptions options;
+  options.time_optimal = true;
+  Pipeline pipeline(machine, options);
+  const RunResult result = pipeline.run((shared_dir / "linuxcnc-tp" / "quick-tests" / "arceye-circle-slowdown.ngc").string());
+  ASSERT_TRUE(result.passed);
+  const auto summary = nlohmann::json::parse(result.summary_json);
+  EXPECT_LE(summary.at("time_ratio").get<double>(), 1.105);
+}
+
 }  // namespace
 }  // namespace kontur

@@ -452,7 +452,8 @@ PathLimits limits_at_cap(const PathGeometry& g, double v, const Machine& machine
 }  // namespace
 
 PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s, const Machine& machine,
-                       double junction_jerk_share, double change_weight, bool alone) noexcept {
+                       double junction_jerk_share, double change_weight, bool alone,
+                       double change_from_mm_s) noexcept {
   PathLimits best;
   double best_time = kInf;
   const bool curved = !g.curvature.isZero();
@@ -469,14 +470,15 @@ PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s
           std::min(speed_cap(g, feed_mm_s, machine, share, rate_share), std::sqrt(0.5 * (1.0 + share)) * pair_speed);
       const PathLimits l = limits_at_cap(g, v, machine, junction_jerk_share);
       // Time estimate: the length at the cap, plus change_weight times the time to reach the cap
-      // from rest (jerk-limited; by speed bands where the piece runs alone in its chain, as the
-      // motion planner then plans it: plan/banded_profile.hpp).
+      // from the junctions' speed (jerk-limited; by speed bands where the piece runs alone in its
+      // chain, as the motion planner then plans it: plan/banded_profile.hpp).
+      const double from = std::clamp(change_from_mm_s, 0.0, v);  // [mm/s]
       double change = std::isfinite(l.max_acceleration) && l.max_acceleration > 0.0
-                          ? velocity_change_time(0.0, v, l.max_acceleration, l.max_jerk)
+                          ? velocity_change_time(from, v, l.max_acceleration, l.max_jerk)
                           : 0.0;
       if (alone && curved && change > 0.0)
         if (const AccelerationBands b = acceleration_bands(g, l, machine, junction_jerk_share); b.n > 0)
-          change = std::min(change, banded_change_time(0.0, v, b));
+          change = std::min(change, banded_change_time(from, v, b));
       const double time = v > 0.0 ? length_mm / v + change_weight * change : kInf;
       if (time < best_time || best_time == kInf) {
         best_time = time;

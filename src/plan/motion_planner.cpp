@@ -292,6 +292,7 @@ void MotionPlanner::push(const program::Move& move) {
   for (MovePiece& p : pieces) p.geometry.extra_rate = rate_bound;
   // The junction with the move before (still the open chain's last piece unless it stopped).
   Junction in{0.0, 0.0};  // at rest
+  double in_speed = 0.0;   // [mm/s] the speed the motion may pass the junction at, at most
   if (!open_.pieces.empty()) {
     if (move.tool_still || last_tool_still_) {
       // The tool point stops where only the extra axes go on (or start): a stop unless both stand.
@@ -303,7 +304,16 @@ void MotionPlanner::push(const program::Move& move) {
       in = tighter(junction(*last_end_, c.derivatives(c.u_min(), 2), machine_),
                    extra_axes_junction(last_rate_, rate, machine_));
     }
-    settle_last(in.jerk_share, in.smooth());
+    // (the speed through the junction is also at most the caps beside it: the last piece's, and
+    // about this move's first piece's, at the largest centripetal share)
+    if (!in.smooth()) {
+      in_speed = std::min(in.velocity, open_.pieces.back().limits.max_velocity);
+      const double next_cap = speed_cap(pieces.front().geometry, move.feed_mm_s, machine_,
+                                        std::end(tolerances::plan_centripetal_shares)[-1]);
+      settle_last(in.jerk_share, false, std::min(in.velocity, next_cap));
+    } else {
+      settle_last(in.jerk_share, true, in.velocity);
+    }
     if (!in.smooth()) close_chain(in.velocity);  // a corner or a curvature jump: the speed there is limited
     reach_from(in);
   }
@@ -332,6 +342,7 @@ void MotionPlanner::push(const program::Move& move) {
     // (within the reach of a junction before it, that junction's share: reach_from)
     if (reach_left_s_ > 0.0) piece.start_share = std::max(piece.start_share, reach_share_);
     piece.start_smooth = i == 0 ? continues_chain : pieces[i - 1].end.smooth();
+    piece.start_velocity = i == 0 ? in_speed : pieces[i - 1].end.velocity;
     piece.length_mm = p.s1_mm - p.s0_mm;
     if (initial_hold_s_ > 0.0) {
       seg.hold_before_s = initial_hold_s_;
@@ -344,7 +355,8 @@ void MotionPlanner::push(const program::Move& move) {
     // and chosen anew when it is known (settle_last; the open chain is not yet in the look-ahead).
     piece.planned_share = std::max(piece.start_share, last ? 0.0 : p.end.jerk_share);
     piece.planned_end_smooth = last || p.end.smooth();
-    piece.limits = piece_limits(piece, piece.planned_share, piece.planned_end_smooth);
+    piece.planned_end_velocity = last ? std::numeric_limits<double>::infinity() : p.end.velocity;
+    piece.limits = piece_limits(piece, piece.planned_share, piece.planned_end_smooth, piece.planned_end_velocity);
     // (the motion takes at least the piece's length at its cap to pass it)
     if (reach_left_s_ > 0.0) {
       const double cap = piece.limits.max_velocity;  // [mm/s]
@@ -363,7 +375,7 @@ void MotionPlanner::push(const program::Move& move) {
   last_exact_stop_ = move.exact_stop;
   last_move_ = move.id;
   if (move.exact_stop) {
-    settle_last(0.0, false);
+    settle_last(0.0, false, 0.0);
     close_chain(0.0);
   }
   release_ready();
@@ -486,25 +498,35 @@ void MotionPlanner::reach_from(const Junction& j) noexcept {
   reach_left_s_ = tolerances::plan_junction_share_reach_periods * period_;
 }
 
-PathLimits MotionPlanner::piece_limits(const Piece& piece, double share, bool end_smooth) const {
+PathLimits MotionPlanner::piece_limits(const Piece& piece, double share, bool end_smooth, double end_velocity) const {
   const auto end_weight = [](bool smooth) {
     return smooth ? tolerances::plan_share_choice_change_weight : 0.5;
   };
+  // The speed changes at the ends start from the slower junction that is not smooth: 0 at a stop
+  // or a corner, near the cap at a small jump of curvature (a spiral of arcs: a jump at each arc,
+  // the speed through it almost the arcs' cap; from rest, the change outweighed the arcs' length,
+  // and each took the middle centripetal share: arceye-circle-slowdown at 0.81 of the reference's
+  // speed on the jerk = A / T machine).
+  double from = std::numeric_limits<double>::infinity();  // [mm/s]
+  if (!piece.start_smooth) from = std::min(from, piece.start_velocity);
+  if (!end_smooth) from = std::min(from, end_velocity);
   // (a piece with a corner or a stop at both ends is alone in its chain: planned by speed bands)
   return path_limits(piece.geometry, piece.length_mm, piece.feed_mm_s, machine_, share,
-                     end_weight(piece.start_smooth) + end_weight(end_smooth), !piece.start_smooth && !end_smooth);
+                     end_weight(piece.start_smooth) + end_weight(end_smooth), !piece.start_smooth && !end_smooth,
+                     std::isfinite(from) ? from : 0.0);
 }
 
-void MotionPlanner::settle_last(double end_share, bool end_smooth) {
+void MotionPlanner::settle_last(double end_share, bool end_smooth, double end_velocity) {
   if (open_.pieces.empty()) return;
   Piece& p = open_.pieces.back();
   const double share = std::max(p.start_share, end_share);
-  if (share == p.planned_share && end_smooth == p.planned_end_smooth) return;
+  if (share == p.planned_share && end_smooth == p.planned_end_smooth && end_velocity == p.planned_end_velocity) return;
   // The open chain is not in the look-ahead yet: the piece's limits may still change either way.
   p.planned_share = share;
   p.planned_end_smooth = end_smooth;
+  p.planned_end_velocity = end_velocity;
   const double old_cap = p.limits.max_velocity;
-  p.limits = piece_limits(p, share, end_smooth);
+  p.limits = piece_limits(p, share, end_smooth, end_velocity);
   if (p.limits.max_velocity == old_cap) return;
   // Its cap changed: it may no longer belong to the chain (add_piece decides anew).
   Piece moved = std::move(p);
@@ -538,7 +560,7 @@ void MotionPlanner::close_chain(double end_velocity) {
 void MotionPlanner::dwell(double seconds, long source_line) {
   if (finished_ || !(seconds > 0.0)) return;
   if (!open_.pieces.empty()) {
-    settle_last(0.0, false);  // it ends at rest: no junction
+    settle_last(0.0, false, 0.0);  // it ends at rest: no junction
     close_chain(0.0);
   }
   last_exact_stop_ = true;  // the next move starts from rest
@@ -555,7 +577,7 @@ void MotionPlanner::dwell(double seconds, long source_line) {
 
 void MotionPlanner::finish() {
   if (!finished_ && !open_.pieces.empty()) {
-    settle_last(0.0, false);  // the last move ends at rest
+    settle_last(0.0, false, 0.0);  // the last move ends at rest
     close_chain(0.0);
   }
   finished_ = true;

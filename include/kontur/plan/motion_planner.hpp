@@ -16,6 +16,7 @@
 #include <kontur/trajectory/trajectory.hpp>
 #include <memory>
 #include <optional>
+#include <limits>
 #include <vector>
 
 namespace kontur::plan {
@@ -62,8 +63,10 @@ class MotionPlanner {
     double feed_mm_s = 0.0;
     double start_share = 0.0;  // jerk share of the junction at its start
     bool start_smooth = false;  // its start is inside a chain (a smooth junction)
+    double start_velocity = 0.0;  // [mm/s] the largest speed through the junction at its start
     double planned_share = 0.0;  // the junction share its limits were chosen for ...
-    bool planned_end_smooth = true;  // ... and whether its end was taken to be inside a chain
+    bool planned_end_smooth = true;  // ... whether its end was taken to be inside a chain ...
+    double planned_end_velocity = std::numeric_limits<double>::infinity();  // ... and its speed [mm/s]
     double length_mm = 0.0;
     PathLimits limits;  // final once its end junction is known (settle_last)
     AccelerationBands bands;  // its speed bands (constraints.hpp), set when its chain closes
@@ -103,9 +106,9 @@ class MotionPlanner {
   // The chain's speed bands up to its smallest cap (none where its pieces are lines).
   [[nodiscard]] AccelerationBands chain_bands(const Chain& chain) const;
   // The open chain's last piece gets its end junction's share; its limits become final.
-  void settle_last(double end_share, bool end_smooth);
+  void settle_last(double end_share, bool end_smooth, double end_velocity);
   // The limits of a piece whose ends have these junction shares and are or are not inside a chain.
-  [[nodiscard]] PathLimits piece_limits(const Piece& piece, double share, bool end_smooth) const;
+  [[nodiscard]] PathLimits piece_limits(const Piece& piece, double share, bool end_smooth, double end_velocity) const;
   // Closes the open chain (its end speed at most `end_velocity`) and hands it to the look-ahead.
   void close_chain(double end_velocity);
   // Hands the chains whose profiles are final to the trajectory, holding those that join the next
