@@ -468,6 +468,15 @@ PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s
         break;
       const double v =
           std::min(speed_cap(g, feed_mm_s, machine, share, rate_share), std::sqrt(0.5 * (1.0 + share)) * pair_speed);
+      if (change_weight == 0.0) {
+        // (the time is the length at the cap alone: the limits at the cap only for the best)
+        const double time = v > 0.0 ? length_mm / v : kInf;
+        if (time < best_time || best_time == kInf) {
+          best_time = time;
+          best.max_velocity = v;
+        }
+        continue;
+      }
       const PathLimits l = limits_at_cap(g, v, machine, junction_jerk_share);
       // Time estimate: the length at the cap, plus change_weight times the time to reach the cap
       // from the junctions' speed (jerk-limited; by speed bands where the piece runs alone in its
@@ -486,6 +495,7 @@ PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s
       }
     }
   }
+  if (change_weight == 0.0) best = limits_at_cap(g, best.max_velocity, machine, junction_jerk_share);
   // A stretch along no axis the machine limits (or of speed 0): the first axis's limits. (An axis
   // does not bound the acceleration to zero or below at the cap: pair_centripetal_speed leaves every
   // pair some.)
