@@ -496,6 +496,9 @@ inline constexpr double blend_estimate_least_acceleration_share = 0.05;
 /// Trim distances tried at a junction with an arc before it is left unblended (each tried one is
 /// shrunk by the ratio of the tolerance to its deviation).
 inline constexpr int blend_arc_attempts = 12;
+/// Tangent scales of a blend of a junction with an arc (geometry/transition_curve.hpp) the blender
+/// sizes and compares, taking the one that passes the junction fastest.
+inline constexpr double blend_arc_tangent_scales[] = {1.0, 0.8, 0.9, 1.1, 1.25};
 /// Samples of a blend of a junction with an arc (plus a golden-section search around the largest)
 /// when the blender measures its largest distance from the programmed pieces to size it
 /// (geometry/transition_curve.hpp; its distance varies slowly: the peak between samples is within

@@ -8,8 +8,8 @@
 
 namespace kontur {
 
-TransitionCurve::TransitionCurve(const CurveEnd& from, const CurveEnd& to) noexcept {
-  const double lambda = (to.point - from.point).norm();
+TransitionCurve::TransitionCurve(const CurveEnd& from, const CurveEnd& to, double tangent_scale) noexcept {
+  const double lambda = tangent_scale * (to.point - from.point).norm();
   const Vec3 p = to.point - from.point;
   const Vec3 v0 = lambda * from.tangent, v1 = lambda * to.tangent;
   const Vec3 a0 = lambda * lambda * from.curvature, a1 = lambda * lambda * to.curvature;

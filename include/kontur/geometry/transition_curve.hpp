@@ -18,11 +18,13 @@ struct CurveEnd {
 
 /// The quintic Hermite curve B(u), u in [0, 1], from `from` to `to` that takes each end's point,
 /// tangent and curvature: B' = lambda t and B'' = lambda^2 K at both ends, lambda the chord
-/// |to - from| [mm]. Curvature-continuous with the two curves it joins (G2), so the speed need not
-/// drop for a jump of acceleration where it starts and ends.
+/// |to - from| [mm] times `tangent_scale`. Curvature-continuous with the two curves it joins (G2),
+/// so the speed need not drop for a jump of acceleration where it starts and ends; the scale shapes
+/// how its curvature runs between them (the corner blender chooses it: a larger one lets the
+/// curvature rise more slowly from each end).
 class TransitionCurve final : public Curve {
  public:
-  TransitionCurve(const CurveEnd& from, const CurveEnd& to) noexcept;
+  TransitionCurve(const CurveEnd& from, const CurveEnd& to, double tangent_scale = 1.0) noexcept;
   [[nodiscard]] double u_min() const noexcept override { return 0.0; }
   [[nodiscard]] double u_max() const noexcept override { return 1.0; }
   [[nodiscard]] Derivatives derivatives(double u, int order) const noexcept override;
