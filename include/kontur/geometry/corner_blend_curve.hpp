@@ -3,6 +3,7 @@
 // program/corner_blender.hpp), and the measure the blender sizes it with.
 #include <array>
 #include <kontur/geometry/curve.hpp>
+#include <kontur/geometry/span_polynomial.hpp>
 #include <vector>
 
 namespace kontur {
@@ -24,7 +25,7 @@ struct CornerBlendShape {
 /// The blend curve of a corner P between the incoming direction t1 and the outgoing t2 (unit
 /// vectors), trimmed by d [mm] on each line: the quintic Bezier with control points
 /// Q_0..2 = P - d (1, s, e) t1 and Q_3..5 = P + d (e, s, 1) t2 (s, e: the shape's `second` and
-/// `third`). B(0) = P - d t1 and B(1) = P + d t2 exactly, and B' and B'' lie along the line at
+/// `third`). B(0) = P - d t1 and B(1) = P + d t2 exactly (the end values of the Bernstein form), and B' and B'' lie along the line at
 /// each end (the curvature is 0 there: three control points lie on each line). Its curvature
 /// rises from 0 at each end: the smaller e, the more slowly (a smaller curvature change, for the
 /// jerk); the larger s, the lower its peak (for the acceleration).
@@ -40,19 +41,14 @@ class CornerBlendCurve final : public Curve {
   [[nodiscard]] const Vec3& corner() const noexcept { return corner_; }
   /// The trim distance d on each line [mm].
   [[nodiscard]] double trim_mm() const noexcept { return d_; }
-  /// Where its inner control points lie.
-  [[nodiscard]] const CornerBlendShape& shape() const noexcept { return shape_; }
 
  private:
-  Vec3 corner_, t1_, t2_;
+  Vec3 corner_;
   double d_;
-  CornerBlendShape shape_;
-  // the control points' coordinates along t1 and t2 [mm] (from P), and of their differences:
-  // row k holds the Bezier coefficients of the k-th derivative (degree 5 - k), without the factor
-  // 5! / (5 - k)!; and the same polynomials in the power basis (ascending)
-  std::array<std::array<double, 6>, 4> along1_{}, along2_{};
-  std::array<double, 6> power1_{}, power2_{};
+  SpanPolynomial span_;      // the quintic in the power basis on [0, 1] (Horner: span_polynomial.hpp)
+  std::array<Vec3, 4> end_;  // B(1) and its derivatives there, from the last control points (exact)
 };
+
 /// Largest distance [mm] of `curve` from the union of the segments [before, corner] and
 /// [corner, after]: dense samples (tolerances::blend_deviation_samples per curve) and a
 /// golden-section search around the largest. (The checker measures blends its own way.)
