@@ -104,6 +104,14 @@ bool blend_pays(double blend_mm, double v_blend, double d, const Side& a, const 
   return t_blend < t_junction;
 }
 
+// What the blender compares a junction's blends by [s]: the time along a blend of blend_mm [mm] at
+// its speed cap v [mm/s], less the time the moves it trims (d [mm] on each side) would take at
+// sides_mm_s (the slower side's cap; at least the blend's).
+double pass_time_s(double blend_mm, double d, double v, double sides_mm_s) {
+  if (!(v > 0.0)) return std::numeric_limits<double>::infinity();
+  return blend_mm / v - 2.0 * d / std::max(sides_mm_s, v);
+}
+
 // The blend of the corner `corner` between lines of lengths la and lb [mm] in the unit directions
 // t1 and t2, of the given shape: as large as the tolerance [mm] allows (its deviation from the
 // lines, which grows with d), trimming at most tolerances::blend_max_trim_share of each line.
@@ -126,20 +134,15 @@ LineBlend line_blend(const Vec3& corner, const Vec3& t1, const Vec3& t2, double 
   return {std::move(curve), blend_mm};
 }
 
-// The blend of the family (corner_blend_shape) that passes the corner fastest: the least time
-// along it at its speed cap, less the time the lines it trims (2 d) would take at `lines_mm_s`
-// [mm/s] (the slower line's cap; at least the blend's). Golden sections over the family's
-// parameter; the time falls as the blend's cap rises while its curvature or its curvature change
-// binds, and rises again once the other does.
+// The blend of the family (corner_blend_shape) that passes the corner fastest (pass_time_s, the
+// lines at `lines_mm_s` [mm/s]). Golden sections over the family's parameter; the time falls as
+// the blend's cap rises while its curvature or its curvature change binds, and rises again once
+// the other does.
 LineBlend fastest_line_blend(const Vec3& corner, const Vec3& t1, const Vec3& t2, double la, double lb,
                              double tolerance_mm, double feed_mm_s, double lines_mm_s, const BlendSpeed& speed) {
-  const auto time_s = [&](const LineBlend& b) {
-    const double v = speed(*b.curve, feed_mm_s);
-    if (!(v > 0.0)) return std::numeric_limits<double>::infinity();
-    return b.length_mm / v - 2.0 * b.curve->trim_mm() / std::max(lines_mm_s, v);
-  };
   const auto blend_time_s = [&](double third) {
-    return time_s(line_blend(corner, t1, t2, la, lb, tolerance_mm, corner_blend_shape(third), false));
+    const LineBlend b = line_blend(corner, t1, t2, la, lb, tolerance_mm, corner_blend_shape(third), false);
+    return pass_time_s(b.length_mm, b.curve->trim_mm(), speed(*b.curve, feed_mm_s), lines_mm_s);
   };
   const double third = golden_section_minimum(blend_time_s, tolerances::blend_shape_third_min,
                                               tolerances::blend_shape_third_max, tolerances::blend_shape_search_steps)
@@ -294,21 +297,16 @@ bool CornerBlender::blend_with_arc(const Move& move, bool move_is_line, std::vec
     // blended, 5 % slower than kept: CornerBlend.TheBlenderChoosesTheFasterOfBlendAndJunction.)
     const JunctionPass pass =
         junction_ ? junction_(d_in, d_out) : JunctionPass{0.0, tolerances::plan_corner_jerk_share};
-    if (!blend_pays(chosen->length_mm, speed_(*chosen->curve, move.feed_mm_s), chosen->d, before, after, pass,
-                    *machine_))
-      return false;
+    const double v = speed_(*chosen->curve, move.feed_mm_s);  // [mm/s]
+    if (!blend_pays(chosen->length_mm, v, chosen->d, before, after, pass, *machine_)) return false;
     const double sides_mm_s = std::min(before.cap_mm_s, after.cap_mm_s);
-    const auto time_s = [&](const ArcBlend& b) {
-      const double v = speed_(*b.curve, move.feed_mm_s);
-      if (!(v > 0.0)) return std::numeric_limits<double>::infinity();
-      return b.length_mm / v - 2.0 * b.d / std::max(sides_mm_s, v);
-    };
-    double best_s = time_s(*chosen);
+    double best_s = pass_time_s(chosen->length_mm, chosen->d, v, sides_mm_s);
     for (const double scale : tolerances::blend_arc_tangent_scales) {
       if (scale == 1.0) continue;
       std::optional<ArcBlend> other = sized(scale);
       if (!other) continue;
-      const double t_s = time_s(*other);
+      const double t_s =
+          pass_time_s(other->length_mm, other->d, speed_(*other->curve, move.feed_mm_s), sides_mm_s);
       if (t_s < best_s) {
         best_s = t_s;
         chosen = std::move(other);
