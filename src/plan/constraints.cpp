@@ -7,6 +7,7 @@
 #include <kontur/plan/constraints.hpp>
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -449,13 +450,23 @@ PathLimits limits_at_cap(const PathGeometry& g, double v, const Machine& machine
   return l;
 }
 
+// A stretch along no axis the machine limits (or of speed 0): the first axis's acceleration and
+// jerk. (An axis does not bound the acceleration to zero or below at the cap:
+// pair_centripetal_speed leaves every pair some.)
+PathLimits with_first_axis_fallback(PathLimits l, const Machine& machine) noexcept {
+  if (!std::isfinite(l.max_acceleration) || !(l.max_acceleration > 0.0))
+    l.max_acceleration = machine.axes.front().max_acceleration;
+  if (!std::isfinite(l.max_jerk) || !(l.max_jerk > 0.0)) l.max_jerk = machine.axes.front().max_jerk;
+  return l;
+}
+
 }  // namespace
 
 PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s, const Machine& machine,
                        double junction_jerk_share, double change_weight, bool alone,
                        double change_from_mm_s) noexcept {
-  PathLimits best;
-  double best_time = kInf;
+  double best_v = 0.0, best_time = kInf;  // [mm/s], [s]
+  std::optional<PathLimits> best;        // its limits, where the estimate needed them
   const bool curved = !g.curvature.isZero();
   const double pair_speed = pair_centripetal_speed(g, machine);  // [mm/s]
   for (const double share : tolerances::plan_centripetal_shares) {
@@ -468,50 +479,36 @@ PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s
         break;
       const double v =
           std::min(speed_cap(g, feed_mm_s, machine, share, rate_share), std::sqrt(0.5 * (1.0 + share)) * pair_speed);
-      if (change_weight == 0.0) {
-        // (the time is the length at the cap alone: the limits at the cap only for the best)
-        const double time = v > 0.0 ? length_mm / v : kInf;
-        if (time < best_time || best_time == kInf) {
-          best_time = time;
-          best.max_velocity = v;
-        }
-        continue;
-      }
-      const PathLimits l = limits_at_cap(g, v, machine, junction_jerk_share);
       // Time estimate: the length at the cap, plus change_weight times the time to reach the cap
       // from the junctions' speed (jerk-limited; by speed bands where the piece runs alone in its
-      // chain, as the motion planner then plans it: plan/banded_profile.hpp).
-      const double from = std::clamp(change_from_mm_s, 0.0, v);  // [mm/s]
-      double change = std::isfinite(l.max_acceleration) && l.max_acceleration > 0.0
-                          ? velocity_change_time(from, v, l.max_acceleration, l.max_jerk)
-                          : 0.0;
-      if (alone && curved && change > 0.0)
-        if (const AccelerationBands b = acceleration_bands(g, l, machine, junction_jerk_share); b.n > 0)
-          change = std::min(change, banded_change_time(from, v, b));
-      const double time = v > 0.0 ? length_mm / v + change_weight * change : kInf;
+      // chain, as the motion planner then plans it: plan/banded_profile.hpp). The limits at the cap
+      // only where the change counts (inside a chain the length alone decides).
+      double time = v > 0.0 ? length_mm / v : kInf;
+      std::optional<PathLimits> l;
+      if (change_weight > 0.0 && v > 0.0) {
+        l = limits_at_cap(g, v, machine, junction_jerk_share);
+        const double from = std::clamp(change_from_mm_s, 0.0, v);  // [mm/s]
+        double change = std::isfinite(l->max_acceleration) && l->max_acceleration > 0.0
+                            ? velocity_change_time(from, v, l->max_acceleration, l->max_jerk)
+                            : 0.0;
+        if (alone && curved && change > 0.0)
+          if (const AccelerationBands b = acceleration_bands(g, *l, machine, junction_jerk_share); b.n > 0)
+            change = std::min(change, banded_change_time(from, v, b));
+        time += change_weight * change;
+      }
       if (time < best_time || best_time == kInf) {
         best_time = time;
+        best_v = v;
         best = l;
       }
     }
   }
-  if (change_weight == 0.0) best = limits_at_cap(g, best.max_velocity, machine, junction_jerk_share);
-  // A stretch along no axis the machine limits (or of speed 0): the first axis's limits. (An axis
-  // does not bound the acceleration to zero or below at the cap: pair_centripetal_speed leaves every
-  // pair some.)
-  if (!std::isfinite(best.max_acceleration) || !(best.max_acceleration > 0.0))
-    best.max_acceleration = machine.axes.front().max_acceleration;
-  if (!std::isfinite(best.max_jerk) || !(best.max_jerk > 0.0)) best.max_jerk = machine.axes.front().max_jerk;
-  return best;
+  return best ? with_first_axis_fallback(*best, machine) : path_limits_at(g, best_v, machine, junction_jerk_share);
 }
 
 PathLimits path_limits_at(const PathGeometry& g, double cap_mm_s, const Machine& machine,
                           double junction_jerk_share) noexcept {
-  PathLimits l = limits_at_cap(g, cap_mm_s, machine, junction_jerk_share);
-  if (!std::isfinite(l.max_acceleration) || !(l.max_acceleration > 0.0))
-    l.max_acceleration = machine.axes.front().max_acceleration;
-  if (!std::isfinite(l.max_jerk) || !(l.max_jerk > 0.0)) l.max_jerk = machine.axes.front().max_jerk;
-  return l;
+  return with_first_axis_fallback(limits_at_cap(g, cap_mm_s, machine, junction_jerk_share), machine);
 }
 
 AccelerationBands acceleration_bands(const PathGeometry& g, const PathLimits& at_cap, const Machine& machine,
