@@ -292,7 +292,7 @@ void MotionPlanner::push(const program::Move& move) {
   for (MovePiece& p : pieces) p.geometry.extra_rate = rate_bound;
   // The junction with the move before (still the open chain's last piece unless it stopped).
   Junction in{0.0, 0.0};  // at rest
-  double in_speed = 0.0;   // [mm/s] the speed the motion may pass the junction at, at most
+  double in_speed = 0.0;   // [mm/s] at most, through a junction that is not smooth (0: from rest)
   if (!open_.pieces.empty()) {
     if (move.tool_still || last_tool_still_) {
       // The tool point stops where only the extra axes go on (or start): a stop unless both stand.
@@ -304,18 +304,18 @@ void MotionPlanner::push(const program::Move& move) {
       in = tighter(junction(*last_end_, c.derivatives(c.u_min(), 2), machine_),
                    extra_axes_junction(last_rate_, rate, machine_));
     }
-    // (the speed through the junction is also at most the caps beside it: the last piece's, and
-    // about this move's first piece's, at the largest centripetal share)
-    if (!in.smooth()) {
+    if (in.smooth()) {
+      settle_last(in.jerk_share, true, in.velocity);
+    } else {
+      // A corner or a curvature jump: the speed there is limited, also by the caps beside it (the
+      // last piece's, and about this move's first piece's, at the largest centripetal share).
       in_speed = std::min(in.velocity, open_.pieces.back().limits.max_velocity);
       const double next_cap = speed_cap(pieces.front().geometry, move.feed_mm_s, machine_,
                                         std::end(tolerances::plan_centripetal_shares)[-1]);
       settle_last(in.jerk_share, false, std::min(in.velocity, next_cap));
-    } else {
-      settle_last(in.jerk_share, true, in.velocity);
+      close_chain(in.velocity);
+      reach_from(in);
     }
-    if (!in.smooth()) close_chain(in.velocity);  // a corner or a curvature jump: the speed there is limited
-    reach_from(in);
   }
   const bool continues_chain = !open_.pieces.empty();
   for (std::size_t i = 0; i < pieces.size(); ++i) {
