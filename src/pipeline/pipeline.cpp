@@ -156,15 +156,12 @@ RunResult Pipeline::run(const std::string& program, const PipelineEvents& events
     }
   };
   program::PathHandlers handlers;
-  std::size_t moves_taken = 0;     // [count] so far
   std::vector<DwellAfter> dwells;  // (for the time-optimal reference)
-  handlers.move = [&](const program::Move& m) {
-    planner.push(m);
-    ++moves_taken;
-  };
+  handlers.move = [&](const program::Move& m) { planner.push(m); };
   handlers.dwell = [&](const program::Dwell& d) {
     planner.dwell(d.seconds, d.source_line);
-    if (d.seconds > 0.0) dwells.push_back({moves_taken, d.seconds});
+    // (the path holds every move taken before the dwell)
+    if (d.seconds > 0.0) dwells.push_back({path_.moves().size(), d.seconds});
   };
   handlers.block = [&](const gcode::Block& b) {
     drain();
