@@ -236,8 +236,9 @@ inline constexpr double plan_small_corner = 0.05;
 /// Tangents or curvature vectors that agree to this (per axis; [1] and [1/mm]) make a smooth junction.
 inline constexpr double plan_junction_smooth = 1e-9;
 /// Share of an axis's acceleration the velocity jump of a corner (v |t2 - t1|_i / T, as setpoints a
-/// period apart see it) may take in the online planner's junction limit: what the centripetal part
-/// leaves at its largest share (plan_centripetal_shares).
+/// period apart see it) may take in the online planner's junction limit; the centripetal
+/// acceleration of the curves on either side of the corner keeps within the rest there (a piece's
+/// cap may take up to 0.97 of it: plan_centripetal_shares).
 inline constexpr double plan_corner_acceleration_share = 0.1;
 /// ... reduced where the moves beside the corner can build up their acceleration within a period:
 /// share = clamp(this - J T / A, 0, plan_corner_acceleration_share) per axis, so none once J T is
@@ -245,7 +246,13 @@ inline constexpr double plan_corner_acceleration_share = 0.1;
 inline constexpr double plan_corner_step_jerk_ramp = 0.5;
 /// Fractions of an axis's acceleration the centripetal part may take on a curve; the planner takes
 /// the one that gives the shortest time for the piece (the rest is left for the path acceleration).
-inline constexpr double plan_centripetal_shares[] = {0.5, 0.7, 0.9};
+/// Above plan_chain_centripetal_share_max only where the choice weighs the speed changes at the
+/// piece's ends (a corner, a stop or a jump of curvature beside it): inside a chain the length
+/// alone decides, which would always take the largest share and leave the chain's profile little
+/// acceleration (3D_Chips on XYZ.ini 1.5 % slower with 0.97 there). 0.97 on a circle alone
+/// (single_circle, jerk = A / T): 1.684 -> 1.635 s; the reference 1.522 s.
+inline constexpr double plan_centripetal_shares[] = {0.5, 0.7, 0.9, 0.97};
+inline constexpr double plan_chain_centripetal_share_max = 0.9;
 /// A curved piece alone in its chain (an arc between corners) speeds up and brakes with the
 /// acceleration its centripetal part leaves at each speed: in bands up to these fractions of its cap
 /// (the last its cap), each with the acceleration left at its top (plan/banded_profile.hpp).
@@ -272,7 +279,9 @@ inline constexpr double plan_share_choice_change_weight = 0.0;
 /// Samples per span of a curve when its geometry (tangent, curvature, curvature change) is
 /// bounded (more where the tangent turns by over 0.2 rad between samples), and the share of each
 /// sampled quantity's range its maximum is raised by (a smooth peak between samples turned by
-/// 0.2 rad lies about 1 % of the range above them; constant quantities stay exact).
+/// 0.2 rad lies about 1 % of the range above them; constant quantities stay exact; an arc
+/// without change of radius gets the exact rise of its sinusoids between samples instead:
+/// plan::path_geometry).
 inline constexpr int plan_samples_per_span = 16;
 /// How many (|t_i|, |K_i|) pairs per axis a stretch keeps to bound its acceleration
 /// (plan::PathGeometry::pairs): more pairs follow a curve's trade of tangent against curvature

@@ -145,6 +145,13 @@ double banded_change_distance(double va, double vb, const AccelerationBands& ban
   return c ? c->distance_mm : kInf;
 }
 
+double banded_change_time_lost(double va, double vb, const AccelerationBands& bands) {
+  const std::optional<Change> c = change_within(va, vb, bands);
+  if (!c) return kInf;
+  const double top = std::min(vb, bands.top_mm_s[static_cast<std::size_t>(bands.n - 1)]);
+  return top > 0.0 ? std::max(0.0, c->duration_s - c->distance_mm / top) : c->duration_s;
+}
+
 double banded_reachable_velocity(double v_from, double distance, const AccelerationBands& bands) {
   if (!valid(bands) || !(distance > 0.0)) return v_from;
   const double cap = bands.top_mm_s[static_cast<std::size_t>(bands.n - 1)];

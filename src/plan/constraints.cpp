@@ -2,6 +2,7 @@
 // time-optimal reference.
 #include <kontur/geometry/differential.hpp>
 #include <kontur/geometry/golden_section.hpp>
+#include <kontur/geometry/helix_arc.hpp>
 #include <kontur/geometry/line_segment.hpp>
 #include <kontur/interpolate/curve_interpolator.hpp>
 #include <kontur/plan/constraints.hpp>
@@ -179,6 +180,9 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
   }
   // Sample until the tangent turns by at most 0.2 rad between samples (a helix of many turns is
   // one span); then a component's peak lies at most about 1 % of its range above the samples.
+  // On an arc also its angle (a steep helix turns its tangent less than its angle).
+  const ArcSpan arc = arc_span(c);
+  const bool circular = arc.arc != nullptr && arc.arc->radius_change_mm() == 0.0;
   for (;;) {
     PathGeometry hi, lo;
     lo.tangent = lo.curvature = lo.curvature_rate = Vec3::Constant(kInf);
@@ -237,7 +241,8 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
       kappa[k] = l.curvature.norm();
       rate[k] = l.rate.norm();
     }
-    if (max_turn > 0.2 && samples < 4096) {
+    const double step_angle = circular ? std::abs(arc.arc->sweep_rad()) * (u1 - u0) / samples : 0.0;  // [rad]
+    if ((max_turn > 0.2 || step_angle > 0.2) && samples < 4096) {
       samples *= 4;
       continue;
     }
@@ -286,16 +291,30 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
       }
     }
     // Constant quantities (a line's tangent, a circle's curvature) are exact; the others are
-    // raised by a share of their range between the samples.
-    constexpr double m = tolerances::plan_sample_margin;
+    // raised by a share of their range between the samples. On a circle or a helix (an arc
+    // without change of radius) every component of the tangent, the curvature vector and its rate
+    // is a constant plus a sinusoid of the angle, of amplitude at most the quantity's magnitude:
+    // between samples d phi apart it rises above the larger of them by at most that magnitude
+    // times 1 - cos(d phi / 2), which replaces the margin (5 % of a full circle's range of K_i
+    // cost 2.5 % of its speed; this bound is 0.5 % of K at most, d phi <= 0.2 rad).
+    const double m = circular ? 0.0 : tolerances::plan_sample_margin;
+    const double arc_rise = 1.0 - std::cos(0.5 * step_angle);
+    // (the sinusoids lie in the arc's plane: on axis i their amplitude is at most sqrt(e1_i^2 + e2_i^2)
+    // of the quantity's magnitude, 0 along the normal of a plane of two axes)
+    const Vec3 amplitude =
+        circular ? Vec3((arc.arc->frame().e1.cwiseAbs2() + arc.arc->frame().e2.cwiseAbs2()).cwiseSqrt()) : Vec3::Zero();
+    const Vec3 arc_raise = arc_rise * amplitude;
+    double rate_norm = 0.0;  // the largest sampled |dK/ds| [1/mm^2]
+    for (const double r : rate) rate_norm = std::max(rate_norm, r);
     const Vec3 hi_t_raw = hi.tangent, hi_k_raw = hi.curvature;
     // A component also peaks between samples above both, by up to 1 - cos(phi / 2) <= phi^2 / 8 of
     // its amplitude (phi the largest turn between samples), where its range over the samples is
     // small: seed 21228, a degree-2 NURBS with weight 0.071, ran X at 1.00026 times its velocity.
     const double between = max_turn * max_turn / 8.0;
-    hi.tangent = (hi.tangent + m * (hi.tangent - lo.tangent) + between * hi.tangent).cwiseMin(Vec3::Ones());
-    hi.curvature += m * (hi.curvature - lo.curvature);
-    hi.curvature_rate += m * (hi.curvature_rate - lo.curvature_rate);
+    hi.tangent = (hi.tangent + m * (hi.tangent - lo.tangent) + between * hi.tangent + arc_raise)
+                     .cwiseMin(Vec3::Ones());
+    hi.curvature += m * (hi.curvature - lo.curvature) + hi.max_kappa * arc_raise;
+    hi.curvature_rate += m * (hi.curvature_rate - lo.curvature_rate) + rate_norm * arc_raise;
     hi.max_kappa += m * (hi.max_kappa - lo.max_kappa);
     hi.curvature_low = lo.curvature;
     hi.curvature_rate_low = lo.curvature_rate;
@@ -313,7 +332,8 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
       if (kappa[k] >= 0.0 && kappa[k + 1] >= 0.0)
         turn[k] = 2.0 * std::asin(std::min(1.0, 0.5 * (locals[k].tangent - locals[k + 1].tangent).norm()));
     for (int i = 0; i < 3; ++i) {
-      const double raise_t = m * (hi_t_raw[i] - lo.tangent[i]), raise_k = m * (hi_k_raw[i] - lo.curvature[i]);
+      const double raise_t = m * (hi_t_raw[i] - lo.tangent[i]) + arc_raise[i],
+                   raise_k = m * (hi_k_raw[i] - lo.curvature[i]) + hi.max_kappa * arc_raise[i];
       std::vector<std::array<double, 2>> pairs;
       pairs.reserve(n + peaks.size());
       const auto alone = [&](const Local& l) {
@@ -329,8 +349,8 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
         const double ta = std::abs(a.tangent[i]), tb = std::abs(b.tangent[i]);
         const double ka = std::abs(a.curvature[i]), kb = std::abs(b.curvature[i]);
         const double kappa_ab = std::max(kappa[k], kappa[k + 1]);
-        pairs.push_back({std::min(1.0, std::max(ta, tb) + phi * phi / 8.0 + m * std::abs(ta - tb)),
-                         std::max(ka, kb) + kappa_ab * phi * phi / 8.0 + m * std::abs(ka - kb)});
+        pairs.push_back({std::min(1.0, std::max(ta, tb) + phi * phi / 8.0 + m * std::abs(ta - tb) + arc_raise[i]),
+                         std::max(ka, kb) + kappa_ab * (phi * phi / 8.0 + arc_raise[i]) + m * std::abs(ka - kb)});
       }
       for (const Local& l : peaks) alone(l);
       hi.set_pairs(i, std::move(pairs));
@@ -471,6 +491,8 @@ PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s
   const double pair_speed = pair_centripetal_speed(g, machine);  // [mm/s]
   for (const double share : tolerances::plan_centripetal_shares) {
     if (!curved && share != tolerances::plan_centripetal_shares[0]) break;  // one choice on a line
+    // (above the chain's largest share only where the changes at the ends are weighed)
+    if (share > tolerances::plan_chain_centripetal_share_max && !(change_weight > 0.0)) break;
     for (const double rate_share : tolerances::plan_curvature_rate_jerk_shares) {
       // the path's own jerk keeps at least plan_path_jerk_share_min of every axis's
       if (rate_share != tolerances::plan_curvature_rate_jerk_shares[0] &&
@@ -479,22 +501,25 @@ PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s
         break;
       const double v =
           std::min(speed_cap(g, feed_mm_s, machine, share, rate_share), std::sqrt(0.5 * (1.0 + share)) * pair_speed);
-      // Time estimate: the length at the cap, plus change_weight times the time to reach the cap
-      // from the junctions' speed (jerk-limited; by speed bands where the piece runs alone in its
-      // chain, as the motion planner then plans it: plan/banded_profile.hpp). The limits at the cap
-      // only where the change counts (inside a chain the length alone decides).
+      // Time estimate: the length at the cap, plus 2 change_weight times the time a change
+      // between the junctions' speed and the cap loses against running its distance at the cap
+      // (jerk-limited: half its duration from rest, (v - from) / 2v of it from `from`; by speed
+      // bands where the piece runs alone in its chain, as the motion planner then plans it:
+      // plan/banded_profile.hpp, where the last band's small acceleration near a high cap costs
+      // far less than its duration). The limits at the cap only where the change counts (inside a
+      // chain the length alone decides).
       double time = v > 0.0 ? length_mm / v : kInf;
       std::optional<PathLimits> l;
       if (change_weight > 0.0 && v > 0.0) {
         l = limits_at_cap(g, v, machine, junction_jerk_share);
         const double from = std::clamp(change_from_mm_s, 0.0, v);  // [mm/s]
-        double change = std::isfinite(l->max_acceleration) && l->max_acceleration > 0.0
-                            ? velocity_change_time(from, v, l->max_acceleration, l->max_jerk)
-                            : 0.0;
-        if (alone && curved && change > 0.0)
+        double lost = std::isfinite(l->max_acceleration) && l->max_acceleration > 0.0
+                          ? velocity_change_time(from, v, l->max_acceleration, l->max_jerk) * (v - from) / (2.0 * v)
+                          : 0.0;  // [s]
+        if (alone && curved && lost > 0.0)
           if (const AccelerationBands b = acceleration_bands(g, *l, machine, junction_jerk_share); b.n > 0)
-            change = std::min(change, banded_change_time(from, v, b));
-        time += change_weight * change;
+            lost = std::min(lost, banded_change_time_lost(from, v, b));
+        time += 2.0 * change_weight * lost;
       }
       if (time < best_time || best_time == kInf) {
         best_time = time;
@@ -565,7 +590,8 @@ double corner_step_share(const AxisLimits& axis, double period_s) noexcept {
 double junction_limit(const Derivatives& end_in, const Derivatives& start_out, const Machine& machine,
                       double jerk_share) noexcept {
   const Vec3 dt = unit_tangent(start_out) - unit_tangent(end_in);
-  const Vec3 dk = curvature_vector(start_out) - curvature_vector(end_in);
+  const Vec3 k_in = curvature_vector(end_in), k_out = curvature_vector(start_out);
+  const Vec3 dk = k_out - k_in;
   double v = kInf;
   const double T = machine.servo_period_s;
   for (const AxisLimits& axis : machine.axes) {
@@ -577,8 +603,15 @@ double junction_limit(const Derivatives& end_in, const Derivatives& start_out, c
     // a v^2 + b v <= c, solved without cancellation
     if (a > 0.0) v = std::min(v, 2.0 * c / (b + std::sqrt(b * b + 4.0 * a * c)));
     else if (b > 0.0) v = std::min(v, c / b);
-    // the acceleration spike of a corner, v |dt_i| / T, within its share of the axis's acceleration
-    if (b > 0.0) v = std::min(v, corner_step_share(axis, T) * axis.max_acceleration * T / std::abs(dt[i]));
+    // the acceleration spike of a corner, v |dt_i| / T, within its share of the axis's acceleration,
+    // and the centripetal acceleration of the curves on either side there within the rest (a
+    // curve's cap may take up to the largest of plan_centripetal_shares, above that rest)
+    if (b > 0.0) {
+      const double step_share = corner_step_share(axis, T);
+      v = std::min(v, step_share * axis.max_acceleration * T / std::abs(dt[i]));
+      const double k = std::max(std::abs(k_in[i]), std::abs(k_out[i]));  // [1/mm]
+      if (k > 0.0) v = std::min(v, std::sqrt((1.0 - step_share) * axis.max_acceleration / k));
+    }
   }
   return v;
 }
@@ -619,8 +652,9 @@ Junction tighter(const Junction& a, const Junction& b) noexcept {
 
 double curve_speed_cap(const Curve& curve, double feed_mm_s, const Machine& machine) {
   const PathGeometry g = path_geometry(curve, curve.u_min(), curve.u_max());
-  // (the largest shares: a blend runs at about one speed, so the path acceleration needs little)
-  return speed_cap(g, feed_mm_s, machine, std::end(tolerances::plan_centripetal_shares)[-1],
+  // (the largest shares inside a chain, where a blend runs: at about one speed, so the path
+  // acceleration needs little)
+  return speed_cap(g, feed_mm_s, machine, tolerances::plan_chain_centripetal_share_max,
                    std::end(tolerances::plan_curvature_rate_jerk_shares)[-1]);
 }
 

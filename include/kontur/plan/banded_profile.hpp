@@ -46,6 +46,11 @@ struct AccelerationBands {
 /// Distance [mm] covered by that change (infinity where the bands are invalid).
 [[nodiscard]] double banded_change_distance(double va, double vb, const AccelerationBands& bands);
 
+/// The time [s] that change loses against covering its distance at vb: its duration less its
+/// distance over vb (infinity where the bands are invalid). A profile that speeds up from va to a
+/// cap vb and brakes back takes about length / vb plus this for each of the two changes.
+[[nodiscard]] double banded_change_time_lost(double va, double vb, const AccelerationBands& bands);
+
 /// The largest speed [mm/s] (at most the last top) reachable from v_from within `distance` [mm] by
 /// speeding up under the bands; by symmetry the largest from which braking to v_from fits. v_from
 /// where the bands are invalid or v_from is above the last top.
