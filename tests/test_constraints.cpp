@@ -4,6 +4,7 @@
 // machine with the axis, by both.
 #include <gtest/gtest.h>
 #include <kontur/geometry/curve_piece.hpp>
+#include <kontur/geometry/differential.hpp>
 #include <kontur/geometry/helix_arc.hpp>
 #include <kontur/geometry/line_segment.hpp>
 #include <kontur/geometry/nurbs.hpp>
@@ -231,6 +232,31 @@ TEST(Constraints, AnArcsGeometryBoundsItsTrueMaximaWithinTheRiseBetweenSamples) 
     }
     EXPECT_NEAR(g.max_kappa, kappa, 1e-12 * kappa);
   }
+}
+
+// A corner's velocity step (v |dt_i| / T) takes up to plan_corner_acceleration_share of an axis's
+// acceleration in the period it is passed; a curve beside it may take up to 0.97 of it at its cap
+// (plan_centripetal_shares), so the corner keeps the curves' centripetal acceleration there within
+// the rest: two quarter circles of radius 10 mm meeting at a kink of 1e-4 rad (the step, the
+// jerk and the curvature jump would allow more than 200 mm/s) pass at sqrt(0.9 A R).
+TEST(Constraints, ACornerBesideACurveKeepsTheCentripetalAccelerationWithinWhatItsStepLeaves) {
+  const Machine m = full_machine();  // A = 2000 mm/s^2, J = 50000 mm/s^3, T = 1 ms: step share 0.1
+  const double R = 10.0, A = 2000.0, kink = 1e-4;
+  const HelixArc first(CircleFrame{}, R, 0.5 * std::numbers::pi);  // ends at (0, R) heading -X
+  const Vec3 p = first.point(1.0);
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(kink, Vec3::UnitZ()).toRotationMatrix();
+  CircleFrame f;
+  f.centre = p + turn * (Vec3::Zero() - p);
+  f.e1 = (p - f.centre).normalized();
+  f.normal = Vec3::UnitZ();
+  f.e2 = f.normal.cross(f.e1);
+  const HelixArc second(f, R, 0.5 * std::numbers::pi);
+  const Junction j = junction(first.derivatives_left(1.0, 2), second.derivatives(0.0, 2), m);
+  ASSERT_FALSE(j.smooth());
+  EXPECT_NEAR(j.velocity, std::sqrt(0.9 * A * R), 1e-9 * j.velocity);
+  const Vec3 k_in = curvature_vector(first.derivatives_left(1.0, 2)), k_out = curvature_vector(second.derivatives(0.0, 2));
+  for (int i = 0; i < 3; ++i)
+    EXPECT_LE(std::max(std::abs(k_in[i]), std::abs(k_out[i])) * j.velocity * j.velocity, 0.9 * A * (1 + 1e-12)) << i;
 }
 
 // The share choice weighs the speed changes at a piece's ends from the speed its junctions allow:
