@@ -283,6 +283,9 @@ inline constexpr double plan_share_choice_change_weight = 0.0;
 /// without change of radius gets the exact rise of its sinusoids between samples instead:
 /// plan::path_geometry).
 inline constexpr int plan_samples_per_span = 16;
+/// An arc whose radius changes by at most this share of it (the rounding of its end point) is
+/// bounded as a circle (plan::path_geometry).
+inline constexpr double plan_arc_radius_change_exact = 1e-9;
 /// How many (|t_i|, |K_i|) pairs per axis a stretch keeps to bound its acceleration
 /// (plan::PathGeometry::pairs): more pairs follow a curve's trade of tangent against curvature
 /// more closely (with 16, a 270-degree arc of radius 20 mm keeps 0.92, 0.88 and 0.73 of

@@ -182,7 +182,11 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
   // one span); then a component's peak lies at most about 1 % of its range above the samples.
   // On an arc also its angle (a steep helix turns its tangent less than its angle).
   const ArcSpan arc = arc_span(c);
-  const bool circular = arc.arc != nullptr && arc.arc->radius_change_mm() == 0.0;
+  // (an end point's rounding leaves a change of radius of a few ulps: 8.9e-16 mm on an arc of
+  // 2.54 mm in arc-terminal; up to plan_arc_radius_change_exact of the radius it counts as a
+  // circle whose magnitudes vary by that share, which the bounds add twice)
+  const double radius_change = arc.arc != nullptr ? std::abs(arc.arc->radius_change_mm()) / arc.arc->radius_mm() : 0.0;
+  const bool circular = arc.arc != nullptr && radius_change <= tolerances::plan_arc_radius_change_exact;
   for (;;) {
     PathGeometry hi, lo;
     lo.tangent = lo.curvature = lo.curvature_rate = Vec3::Constant(kInf);
@@ -298,7 +302,7 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
     // times 1 - cos(d phi / 2), which replaces the margin (5 % of a full circle's range of K_i
     // cost 2.5 % of its speed; this bound is 0.5 % of K at most, d phi <= 0.2 rad).
     const double m = circular ? 0.0 : tolerances::plan_sample_margin;
-    const double arc_rise = 1.0 - std::cos(0.5 * step_angle);
+    const double arc_rise = 1.0 - std::cos(0.5 * step_angle) + (circular ? 2.0 * radius_change : 0.0);
     // (the sinusoids lie in the arc's plane: on axis i their amplitude is at most sqrt(e1_i^2 + e2_i^2)
     // of the quantity's magnitude, 0 along the normal of a plane of two axes)
     const Vec3 amplitude =
