@@ -250,7 +250,7 @@ inline constexpr double plan_corner_step_jerk_ramp = 0.5;
 /// piece's ends (a corner, a stop or a jump of curvature beside it): inside a chain the length
 /// alone decides, which would always take the largest share and leave the chain's profile little
 /// acceleration (3D_Chips on XYZ.ini 1.5 % slower with 0.97 there). 0.97 on a circle alone
-/// (single_circle, jerk = A / T): 1.684 -> 1.635 s; the reference 1.522 s.
+/// (single_circle, jerk = A / T): 1.671 -> 1.635 s; the reference 1.522 s.
 inline constexpr double plan_centripetal_shares[] = {0.5, 0.7, 0.9, 0.97};
 inline constexpr double plan_chain_centripetal_share_max = 0.9;
 /// A curved piece alone in its chain (an arc between corners) speeds up and brakes with the

@@ -142,12 +142,13 @@ struct PathGeometry {
 /// tolerances::plan_centripetal_shares and the curvature-change shares in
 /// tolerances::plan_curvature_rate_jerk_shares (those that leave the path at least
 /// plan_path_jerk_share_min of the jerk), the pair with the shortest estimated time is taken: the
-/// length at the cap plus `change_weight` times the time a change from `change_from_mm_s` (rest
-/// unless given: the speed a junction at its ends allows) to the cap takes (1: a stretch planned
-/// alone; the motion planner weighs each end of a piece inside a chain less,
-/// tolerances::plan_share_choice_change_weight). `alone`: the stretch runs alone in its chain (both
-/// its ends are corners or stops), so the motion planner plans it with its acceleration_bands; the
-/// change is then estimated by them.
+/// length at the cap plus 2 `change_weight` times the time a change from `change_from_mm_s` (rest
+/// unless given: the speed a junction at its ends allows) to the cap loses against running its
+/// distance at the cap (1: a stretch planned alone, speeding up and braking; the motion planner
+/// weighs each end of a piece inside a chain less, tolerances::plan_share_choice_change_weight).
+/// Shares above tolerances::plan_chain_centripetal_share_max only where `change_weight` > 0.
+/// `alone`: the stretch runs alone in its chain (both its ends are corners or stops), so the motion
+/// planner plans it with its acceleration_bands; the change is then estimated by them.
 [[nodiscard]] PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s,
                                      const Machine& machine, double junction_jerk_share,
                                      double change_weight = 1.0, bool alone = false,
