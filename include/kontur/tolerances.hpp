@@ -285,7 +285,12 @@ inline constexpr double plan_share_choice_change_weight = 0.0;
 inline constexpr int plan_samples_per_span = 16;
 /// An arc whose radius changes by at most this share of it (the rounding of its end point) is
 /// bounded as a circle (plan::path_geometry).
-inline constexpr double plan_arc_radius_change_exact = 1e-9;
+inline constexpr double arc_radius_change_exact = 1e-9;
+/// An arc without rise whose radius changes by at most this share of it per radian is a slight
+/// spiral: its distance from a point is measured to its point at the point's angle
+/// (HelixArc::distance_mm), at most 1 / cos(atan(0.03)) - 1 = 4.5e-4 of it above the true
+/// distance (rgh's arcs of 0.23 mm, ends rounded to 0.1 um, change by up to 0.02 per radian).
+inline constexpr double arc_slight_spiral_slope = 0.03;
 /// How many (|t_i|, |K_i|) pairs per axis a stretch keeps to bound its acceleration
 /// (plan::PathGeometry::pairs): more pairs follow a curve's trade of tangent against curvature
 /// more closely (with 16, a 270-degree arc of radius 20 mm keeps 0.92, 0.88 and 0.73 of

@@ -2,6 +2,7 @@
 #include <kontur/geometry/curve_piece.hpp>
 #include <kontur/geometry/helix_arc.hpp>
 #include <kontur/geometry/length.hpp>
+#include <kontur/tolerances.hpp>
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
@@ -63,9 +64,16 @@ double HelixArc::distance_mm(const Vec3& p, double u0, double u1) const noexcept
   double from_start = std::fmod(std::atan2(y, x) - a0, two_pi);
   if (from_start < 0.0) from_start += two_pi;
   const bool within = from_start <= a1 - a0 || a1 - a0 >= two_pi;
-  if (rise_ == 0.0 && radius_change_ == 0.0) {
+  // On a circle, and on a slight spiral (an arc whose programmed end lay off its circle: its
+  // radius changes by at most tolerances::arc_slight_spiral_slope of the radius per radian), the
+  // distance to the point at p's angle: exact on the circle, on the spiral above the distance to
+  // the foot by a factor of at most 1 / cos(atan(slope)) (1 + 4.5e-4 at the largest slope), so still
+  // the distance to a point of the part. (Newton's method on such arcs, each trimmed by the blends
+  // at its ends, took three fifths of the run of rgh.)
+  if (rise_ == 0.0 && std::abs(radius_change_) <= tolerances::arc_slight_spiral_slope * radius_ * std::abs(sweep_)) {
     // (the distance to the circle's points grows with the angle from p's on either side)
-    if (within) return std::hypot(std::hypot(x, y) - radius_, q.dot(frame_.normal));
+    if (within)
+      return std::hypot(std::hypot(x, y) - (radius_ + radius_change_ * (a0 + from_start) / sweep_), q.dot(frame_.normal));
     return std::min((point(u0) - p).norm(), (point(u1) - p).norm());
   }
   // On a spiral, from the parameter of p's angle, or the end nearer in angle; on a helix (a part
@@ -100,8 +108,14 @@ double HelixArc::distance_mm(const Vec3& p, double u0, double u1) const noexcept
 
 ArcSpan arc_span(const Curve& curve) noexcept {
   if (const auto* arc = dynamic_cast<const HelixArc*>(&curve)) return {arc, 0.0, 1.0};
-  if (const auto* piece = dynamic_cast<const CurvePiece*>(&curve))
-    if (const auto* arc = dynamic_cast<const HelixArc*>(piece->whole().get())) return {arc, piece->u_min(), piece->u_max()};
+  // A piece of a piece (an arc blended at both ends: the blender trims the trimmed arc again) has
+  // its whole's parameter, and the outermost piece's range.
+  const auto* piece = dynamic_cast<const CurvePiece*>(&curve);
+  if (piece == nullptr) return {};
+  const double u0 = piece->u_min(), u1 = piece->u_max();
+  const Curve* whole = piece->whole().get();
+  while (const auto* inner = dynamic_cast<const CurvePiece*>(whole)) whole = inner->whole().get();
+  if (const auto* arc = dynamic_cast<const HelixArc*>(whole)) return {arc, u0, u1};
   return {};
 }
 

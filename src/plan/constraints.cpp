@@ -183,10 +183,10 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
   // On an arc also its angle (a steep helix turns its tangent less than its angle).
   const ArcSpan arc = arc_span(c);
   // (an end point's rounding leaves a change of radius of a few ulps: 8.9e-16 mm on an arc of
-  // 2.54 mm in arc-terminal; up to plan_arc_radius_change_exact of the radius it counts as a
+  // 2.54 mm in arc-terminal; up to arc_radius_change_exact of the radius it counts as a
   // circle whose magnitudes vary by that share, which the bounds add twice)
   const double radius_change = arc.arc != nullptr ? std::abs(arc.arc->radius_change_mm()) / arc.arc->radius_mm() : 0.0;
-  const bool circular = arc.arc != nullptr && radius_change <= tolerances::plan_arc_radius_change_exact;
+  const bool circular = arc.arc != nullptr && radius_change <= tolerances::arc_radius_change_exact;
   for (;;) {
     PathGeometry hi, lo;
     lo.tangent = lo.curvature = lo.curvature_rate = Vec3::Constant(kInf);

@@ -44,9 +44,11 @@ public:
   [[nodiscard]] Vec3 point_at_angle(double phi_rad) const noexcept;
   /// Distance [mm] from p to the part of the arc between the parameters u0 <= u1. On a circle (no
   /// rise, no change of radius) exactly: from p's angle about the centre, the foot on the circle
-  /// where that angle lies within the part, else the nearer end. On a spiral, Newton's method on
-  /// (C(u) - p) . C'(u) = 0 from the parameter of p's angle (a point near the arc: a few steps); on
-  /// a helix from the nearest of 8 points a turn; always the distance to a point of the part.
+  /// where that angle lies within the part, else the nearer end; on a slight spiral
+  /// (tolerances::arc_slight_spiral_slope) the same way, to its point at p's angle (at most 4.5e-4
+  /// of the distance above it). On another spiral, Newton's method on (C(u) - p) . C'(u) = 0 from
+  /// the parameter of p's angle (a point near the arc: a few steps); on a helix from the nearest
+  /// of 8 points a turn; always the distance to a point of the part.
   [[nodiscard]] double distance_mm(const Vec3& p, double u0, double u1) const noexcept;
 
 private:
@@ -54,8 +56,8 @@ private:
   double radius_, sweep_, rise_, radius_change_;
 };
 
-/// A curve that is an arc: a HelixArc, or a CurvePiece of one, and the range [u0, u1] of the
-/// arc's parameter it covers (arc null: some other curve).
+/// A curve that is an arc: a HelixArc, or a CurvePiece of one (or of a piece of one), and the range
+/// [u0, u1] of the arc's parameter it covers (arc null: some other curve).
 struct ArcSpan {
   const HelixArc* arc = nullptr;
   double u0 = 0.0, u1 = 1.0;
