@@ -607,6 +607,32 @@ TEST(CornerBlend, CheckerMeasuresAnArcBlendAgainstTheProgrammedArc) {
   EXPECT_GT(verify::blend_deviation(*out[1].curve, moved), 0.015);
 }
 
+// The distance [mm] from p to the part [u0, u1] of `arc` by brute force: the nearest of 20,001
+// points, refined by a golden-section search between its neighbours.
+double nearest_by_sampling(const HelixArc& arc, const Vec3& p, double u0, double u1) {
+  const auto dist = [&](double v) { return (arc.point(v) - p).norm(); };
+  const double h = (u1 - u0) / 20000.0;
+  int best_j = 0;
+  for (int j = 1; j <= 20000; ++j)
+    if (dist(u0 + h * j) < dist(u0 + h * best_j)) best_j = j;
+  return std::min(dist(u0 + h * best_j),
+                  golden_section_minimum(dist, std::max(u0, u0 + h * (best_j - 1)),
+                                         std::min(u1, u0 + h * (best_j + 1)), 200)
+                      .second);
+}
+
+// On a slight spiral distance_mm (d) is never below the nearest point's distance and above it by at
+// most sqrt(1 + s^2 R / rho) (s the radius change per radian over the radius, R at most r_max,
+// rho p's distance from the axis).
+void expect_within_slight_spiral_bound(const HelixArc& arc, const Vec3& p, double d, double nearest, double r_max) {
+  const CircleFrame& f = arc.frame();
+  const double slope = std::abs(arc.radius_change_mm()) / (arc.radius_mm() * arc.sweep_rad());
+  const Vec3 q = p - f.centre;
+  const double rho = (q - q.dot(f.normal) * f.normal).norm();
+  EXPECT_GE(d, nearest - 1e-9);
+  EXPECT_LE(d, nearest * std::sqrt(1.0 + slope * slope * r_max / rho) + 1e-9);
+}
+
 TEST(HelixArcDistance, EqualsTheNearestOfDenseSamplesOnCirclesHelicesAndSpirals) {
   // Seeded arcs (a third circles, a third helices, a third with a change of radius), a random part
   // [u0, u1] of each, points within 1 mm of the part and beyond its ends: distance_mm equals the
@@ -629,24 +655,11 @@ TEST(HelixArcDistance, EqualsTheNearestOfDenseSamplesOnCirclesHelicesAndSpirals)
     for (int k = 0; k < 20; ++k) {
       const double u = u0 + (u1 - u0) * (1.4 * unit(rng) - 0.2);
       const Vec3 p = arc.point(std::clamp(u, 0.0, 1.0)) + unit(rng) * random_unit(rng);
-      // the nearest of 20,001 points, refined by a golden-section search between its neighbours
-      const auto dist = [&](double v) { return (arc.point(v) - p).norm(); };
-      const double h = (u1 - u0) / 20000.0;
-      int best_j = 0;
-      for (int j = 1; j <= 20000; ++j)
-        if (dist(u0 + h * j) < dist(u0 + h * best_j)) best_j = j;
-      const double brute = std::min(
-          dist(u0 + h * best_j),
-          golden_section_minimum(dist, std::max(u0, u0 + h * (best_j - 1)), std::min(u1, u0 + h * (best_j + 1)), 200)
-              .second);
+      const double brute = nearest_by_sampling(arc, p, u0, u1);
       // (a slight spiral: the point at p's angle, OnASlightSpiralIsThePointAtTheSameAngle... below)
       const double slope = std::abs(arc.radius_change_mm()) / (r * arc.sweep_rad());
       if (kind == 2 && slope <= tolerances::arc_slight_spiral_slope) {
-        const Vec3 q = p - f.centre;
-        const double rho = (q - q.dot(f.normal) * f.normal).norm();
-        EXPECT_GE(arc.distance_mm(p, u0, u1), brute - 1e-9) << "arc " << i << " point " << k;
-        EXPECT_LE(arc.distance_mm(p, u0, u1), brute * std::sqrt(1.0 + slope * slope * 1.1 * r / rho) + 1e-9)
-            << "arc " << i << " point " << k;
+        expect_within_slight_spiral_bound(arc, p, arc.distance_mm(p, u0, u1), brute, 1.1 * r);
         continue;
       }
       EXPECT_NEAR(arc.distance_mm(p, u0, u1), brute, kind == 0 ? 1e-9 + 1e-8 * r : 1e-7 + 1e-8 * r)
@@ -673,26 +686,14 @@ TEST(HelixArcDistance, OnASlightSpiralIsThePointAtTheSameAngleAboveTheNearestByA
     f.centre = 50.0 * random_unit(rng);
     const double r = 0.2 + 20.0 * unit(rng), sweep = 0.2 + 6.0 * unit(rng);
     const double dr = 2.0 * tolerances::arc_slight_spiral_slope * r * sweep * (unit(rng) - 0.5);
-    const double slope = std::abs(dr) / (r * sweep);
     const HelixArc arc(f, r, sweep, 0.0, dr);
     const double u0 = 0.5 * unit(rng), u1 = u0 + (1.0 - u0) * (0.05 + 0.95 * unit(rng));
     for (int k = 0; k < 20; ++k) {
       const double u = u0 + (u1 - u0) * (1.4 * unit(rng) - 0.2);
       const Vec3 p = arc.point(std::clamp(u, 0.0, 1.0)) + std::min(1.0, 0.5 * r) * unit(rng) * random_unit(rng);
-      const auto dist = [&](double v) { return (arc.point(v) - p).norm(); };
-      const double h = (u1 - u0) / 20000.0;
-      int best_j = 0;
-      for (int j = 1; j <= 20000; ++j)
-        if (dist(u0 + h * j) < dist(u0 + h * best_j)) best_j = j;
-      const double brute = std::min(
-          dist(u0 + h * best_j),
-          golden_section_minimum(dist, std::max(u0, u0 + h * (best_j - 1)), std::min(u1, u0 + h * (best_j + 1)), 200)
-              .second);
-      const Vec3 q = p - f.centre;
-      const double rho = (q - q.dot(f.normal) * f.normal).norm();
+      const double brute = nearest_by_sampling(arc, p, u0, u1);
       const double d = arc.distance_mm(p, u0, u1);
-      EXPECT_GE(d, brute - 1e-9) << "arc " << i << " point " << k;
-      EXPECT_LE(d, brute * std::sqrt(1.0 + slope * slope * (r + std::abs(dr)) / rho) + 1e-9) << "arc " << i << " point " << k;
+      expect_within_slight_spiral_bound(arc, p, d, brute, r + std::abs(dr));
       above += d > brute + 1e-9 ? 1 : 0;
     }
   }
