@@ -668,6 +668,42 @@ TEST(HelixArcDistance, EqualsTheNearestOfDenseSamplesOnCirclesHelicesAndSpirals)
   }
 }
 
+// On a helix of several turns (thread milling) and a spiral with rise, the nearest point may lie on
+// any turn: distance_mm equals the brute-force nearest to 1e-7 mm, also for points between turns
+// and near the axis. (Newton's method from the nearest of 8 samples a turn stepped onto another
+// turn: 2.26 mm where the nearest point lay 0.396 mm away.)
+TEST(HelixArcDistance, OnAHelixOfSeveralTurnsIsTheDistanceToTheNearestTurn) {
+  std::mt19937_64 rng(65);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int off_their_point = 0;  // points nearer another point than the one they were drawn from
+  for (int i = 0; i < 80; ++i) {
+    CircleFrame f;
+    f.normal = random_unit(rng);
+    f.e1 = f.normal.cross(random_unit(rng)).normalized();
+    f.e2 = f.normal.cross(f.e1);
+    f.centre = 50.0 * random_unit(rng);
+    const double r = 0.5 + 10.0 * unit(rng), turns = 1.0 + 5.0 * unit(rng);
+    const double sweep = 2.0 * M_PI * turns, pitch = (0.05 + 2.0 * unit(rng)) * r;  // [mm] a turn
+    // (helices, spirals with rise, and spirals with rise slight over 2 rad as rgh's ramps)
+    const double dr = i % 3 == 0 ? 0.0
+                      : i % 3 == 1 ? 0.5 * r * (unit(rng) - 0.5)
+                                   : 2.0 * tolerances::arc_slight_spiral_slope * r * 2.0 * (unit(rng) - 0.5);
+    const HelixArc arc(f, r, sweep, pitch * turns, dr);
+    const double u0 = 0.2 * unit(rng), u1 = 1.0 - 0.2 * unit(rng);
+    for (int k = 0; k < 20; ++k) {
+      const double u = u0 + (u1 - u0) * unit(rng);
+      // (toward the axis or outward, and along it up to a pitch)
+      const Vec3 radial = (arc.point(u) - f.centre - (arc.point(u) - f.centre).dot(f.normal) * f.normal).normalized();
+      const Vec3 p = arc.point(u) + r * (1.6 * unit(rng) - 1.0) * radial + pitch * (unit(rng) - 0.5) * f.normal;
+      const double brute = nearest_by_sampling(arc, p, u0, u1);
+      const double d = arc.distance_mm(p, u0, u1);
+      EXPECT_NEAR(d, brute, 1e-7 + 1e-8 * r) << "helix " << i << " point " << k;
+      off_their_point += brute + 1e-6 < (arc.point(u) - p).norm() ? 1 : 0;
+    }
+  }
+  EXPECT_GT(off_their_point, 100);  // (the points test more than the turn they were drawn on)
+}
+
 // On a slight spiral (an arc whose programmed end lay off its circle, its radius changing by at
 // most tolerances::arc_slight_spiral_slope of it per radian) distance_mm is the distance to the
 // point at p's angle: never below the nearest point's (dense samples and a golden-section search),

@@ -291,6 +291,11 @@ inline constexpr double arc_radius_change_exact = 1e-9;
 /// (HelixArc::distance_mm), at most 1 / cos(atan(0.03)) - 1 = 4.5e-4 of it above the true
 /// distance (rgh's arcs of 0.23 mm, ends rounded to 0.1 um, change by up to 0.02 per radian).
 inline constexpr double arc_slight_spiral_slope = 0.03;
+/// Newton's (or bisection) steps toward the nearest point of a spiral's or a helix's turn
+/// (HelixArc::distance_mm; a step of 1e-13 mm ends them sooner).
+inline constexpr int arc_distance_iterations = 60;
+/// Parts of a spiral's whole turn searched for the nearest point each (HelixArc::distance_mm).
+inline constexpr int arc_distance_spiral_parts = 8;
 /// How many (|t_i|, |K_i|) pairs per axis a stretch keeps to bound its acceleration
 /// (plan::PathGeometry::pairs): more pairs follow a curve's trade of tangent against curvature
 /// more closely (with 16, a 270-degree arc of radius 20 mm keeps 0.92, 0.88 and 0.73 of

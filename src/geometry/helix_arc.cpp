@@ -10,8 +10,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace kontur {
+
+namespace {
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+}  // namespace
 
 HelixArc::HelixArc(const CircleFrame& frame, double radius_mm, double sweep_rad, double rise_mm,
                    double radius_change_mm)
@@ -76,32 +81,70 @@ double HelixArc::distance_mm(const Vec3& p, double u0, double u1) const noexcept
       return std::hypot(std::hypot(x, y) - (radius_ + radius_change_ * (a0 + from_start) / sweep_), q.dot(frame_.normal));
     return std::min((point(u0) - p).norm(), (point(u1) - p).norm());
   }
-  // On a spiral, from the parameter of p's angle, or the end nearer in angle; on a helix (a part
-  // may wind more than once), from the nearest of 8 points a turn.
-  double u = within ? std::min(u0 + from_start / sweep_, u1) : (from_start - (a1 - a0) < two_pi - from_start ? u1 : u0);
-  if (rise_ != 0.0) {
-    const int n = 8 * std::max(1, static_cast<int>(std::ceil((a1 - a0) / two_pi)));
-    double nearest = std::numeric_limits<double>::infinity();
-    for (int k = 0; k <= n; ++k) {
-      const double v = k == n ? u1 : u0 + (u1 - u0) * k / n;
-      const double dk = (point(v) - p).squaredNorm();
-      if (dk < nearest) {
-        nearest = dk;
-        u = v;
-      }
+  // The nearest point [mm] of [lo, hi] (parameters) where f < 0 at lo and f > 0 at hi: Newton's
+  // method keeps that bracket around the root (a local minimum), bisecting where a step leaves it.
+  const auto root_within = [&](double lo, double hi) {
+    double best = kInfinity, u = 0.5 * (lo + hi);
+    for (int i = 0; i < tolerances::arc_distance_iterations; ++i) {
+      const Derivatives d = derivatives(u, 2);
+      const Vec3 r = d[0] - p;
+      best = std::min(best, r.norm());
+      const double f = r.dot(d[1]), fp = d[1].squaredNorm() + r.dot(d[2]);
+      (f < 0.0 ? lo : hi) = u;
+      double next = fp > 0.0 ? u - f / fp : lo;
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      // (a step of less than 1e-13 mm along the arc: the foot)
+      if (f == 0.0 || std::abs(next - u) * d[1].norm() <= 1e-13) break;
+      u = next;
     }
+    return best;
+  };
+  // The distance has a local minimum in each turn about p's angle theta. On a helix or circle
+  // (constant radius R) only within psi* = acos(-c^2 / (rho R)) of theta (c the rise per radian,
+  // rho p's distance from the axis), where the squared distance is convex: f changes sign at most
+  // once there. A spiral's turn, theta -+ pi, is cut in tolerances::arc_distance_spiral_parts
+  // (fewer on a shorter part; its farthest point need not lie opposite theta), each change of
+  // sign from - to + searched.
+  // The turns are searched in the order of their axial distance from p, which bounds their points'
+  // distance from below, until that bound passes the nearest found. (Newton's method from the
+  // nearest of 8 samples a turn stepped onto another turn: on a helix of 2.4 turns it returned
+  // 2.26 mm where the nearest point lay 0.396 mm away.)
+  const double c = rise_ / sweep_;        // [mm/rad]
+  const double z = q.dot(frame_.normal);  // p's height over the centre [mm]
+  const double rho = std::hypot(x, y);    // [mm]
+  const double pi = 0.5 * two_pi;
+  const bool helix = radius_change_ == 0.0;
+  const double half = helix && rho > 0.0 ? std::acos(std::max(-1.0, -c * c / (rho * radius_))) : pi;
+  // p's angle from the arc's start, the turn about it that holds a0 [rad]
+  const double theta = a0 + from_start - (from_start > pi ? two_pi : 0.0);
+  struct Turn {
+    double lo, hi, bound;  // [rad], the axial distance from p at the nearer end [mm]
+  };
+  std::vector<Turn> turns;
+  for (double centre = theta; centre - half < a1; centre += two_pi) {
+    const double lo = std::max(a0, centre - half), hi = std::min(a1, centre + half);
+    if (!(lo <= hi)) continue;
+    // (the height c phi is monotone: nearest to z at z's angle, clamped)
+    const double at = c != 0.0 ? std::clamp(z / c, lo, hi) : lo;
+    turns.push_back({lo, hi, std::abs(z - c * at)});
   }
-  double best_mm = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < 8; ++i) {
-    const Derivatives d = derivatives(u, 2);
-    const Vec3 r = d[0] - p;
-    best_mm = std::min(best_mm, r.norm());
-    const double f = r.dot(d[1]), fp = d[1].squaredNorm() + r.dot(d[2]);
-    if (!(fp > 0.0)) break;
-    const double next = std::clamp(u - f / fp, u0, u1);
-    // (a step of less than 1e-13 mm along the arc: the foot)
-    if (std::abs(next - u) * d[1].norm() <= 1e-13) break;
-    u = next;
+  std::sort(turns.begin(), turns.end(), [](const Turn& a, const Turn& b) { return a.bound < b.bound; });
+  double best_mm = std::min((point(u0) - p).norm(), (point(u1) - p).norm());
+  for (const Turn& t : turns) {
+    if (t.bound >= best_mm) break;
+    // (f(u) = (C(u) - p).C'(u), half the derivative of the squared distance along the parameter)
+    double v_before = 0.0, f_before = 0.0;
+    const int parts =
+        helix ? 1 : std::max(1, static_cast<int>(std::ceil(tolerances::arc_distance_spiral_parts * (t.hi - t.lo) / two_pi)));
+    for (int k = 0; k <= parts; ++k) {
+      const double v = k == parts ? t.hi / sweep_ : (t.lo + (t.hi - t.lo) * k / parts) / sweep_;
+      const Derivatives d = derivatives(v, 1);
+      const double f = (d[0] - p).dot(d[1]);
+      best_mm = std::min(best_mm, (d[0] - p).norm());
+      if (k > 0 && f_before < 0.0 && f > 0.0) best_mm = std::min(best_mm, root_within(v_before, v));
+      v_before = v;
+      f_before = f;
+    }
   }
   return best_mm;
 }
