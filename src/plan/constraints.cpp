@@ -94,14 +94,17 @@ std::vector<std::array<double, 2>> PathGeometry::axis_pairs(int i) const {
 }
 
 void PathGeometry::set_pairs(int i, std::vector<std::array<double, 2>> points) {
+  set_pairs_in_place(i, std::span<std::array<double, 2>>(points));
+}
+
+void PathGeometry::set_pairs_in_place(int i, std::span<std::array<double, 2>> points) {
   // The front of pairs no other dominates, by |t| rising (so |K| falling).
   std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a[0] > b[0] || (a[0] == b[0] && a[1] > b[1]); });
   // by |t| falling, |K| rising: kept in place (a subsequence of the sorted points)
   std::size_t kept = 0;
   for (std::size_t r = 0; r < points.size(); ++r)
     if (kept == 0 || points[r][1] > points[kept - 1][1]) points[kept++] = points[r];
-  points.resize(kept);
-  std::vector<std::array<double, 2>>& front = points;
+  std::span<std::array<double, 2>> front = points.first(kept);
   // Too many: merge the neighbours whose componentwise maximum adds the least area.
   while (front.size() > static_cast<std::size_t>(tolerances::plan_acceleration_pairs)) {
     std::size_t best = 0;
@@ -114,7 +117,9 @@ void PathGeometry::set_pairs(int i, std::vector<std::array<double, 2>> points) {
       }
     }
     front[best] = {front[best][0], front[best + 1][1]};
-    front.erase(front.begin() + static_cast<std::ptrdiff_t>(best) + 1);
+    std::copy(front.begin() + static_cast<std::ptrdiff_t>(best) + 2, front.end(),
+              front.begin() + static_cast<std::ptrdiff_t>(best) + 1);
+    front = front.first(front.size() - 1);
   }
   AxisPairs& p = pairs[static_cast<std::size_t>(i)];
   p.n = static_cast<int>(front.size());
@@ -131,10 +136,16 @@ void PathGeometry::drop_curvature() noexcept {
 }
 
 void PathGeometry::merge(const PathGeometry& o) {
+  // (each side's pairs, or its maxima as one pair: axis_pairs, without allocating)
+  std::array<std::array<double, 2>, 2 * tolerances::plan_acceleration_pairs> both;
   for (int i = 0; i < 3; ++i) {
-    std::vector<std::array<double, 2>> both = axis_pairs(i), other = o.axis_pairs(i);
-    both.insert(both.end(), other.begin(), other.end());
-    set_pairs(i, std::move(both));
+    std::size_t n = 0;
+    for (const PathGeometry* g : {static_cast<const PathGeometry*>(this), &o}) {
+      const AxisPairs& p = g->pairs[static_cast<std::size_t>(i)];
+      for (int j = 0; j < p.n; ++j) both[n++] = {p.t[static_cast<std::size_t>(j)], p.k[static_cast<std::size_t>(j)]};
+      if (p.n == 0 && (g->tangent[i] > 0.0 || g->curvature[i] > 0.0)) both[n++] = {g->tangent[i], g->curvature[i]};
+    }
+    set_pairs_in_place(i, std::span<std::array<double, 2>>(both.data(), n));
   }
   tangent = tangent.cwiseMax(o.tangent);
   curvature = curvature.cwiseMax(o.curvature);
@@ -159,6 +170,24 @@ std::pair<Vec3, Vec3> curvature_vector_and_rate(const Derivatives& d) noexcept {
                      4.0 * p * p * r1 / (q * q * q);
   return {k, dk_du / std::sqrt(q)};
 }
+
+namespace {
+
+// unit tangent, curvature vector and its rate at a regular point of a curve
+struct LocalGeometry {
+  Vec3 tangent, curvature, rate;
+};
+
+// path_geometry's sample buffers, kept between calls (it runs for every piece of every move: their
+// allocations were a tenth of a run of dense lines)
+struct GeometryScratch {
+  std::vector<Derivatives> ds;
+  std::vector<double> us, kappa, rate, turn;
+  std::vector<LocalGeometry> locals, peaks;
+  std::vector<std::array<double, 2>> pairs;
+};
+
+}  // namespace
 
 PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, double speed_floor) {
   samples = std::max(samples, 1);
@@ -195,8 +224,11 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
     Vec3 t_before = Vec3::Zero();
     // The span's own polynomial at its right end (the next span may differ there).
     const auto n = static_cast<std::size_t>(samples) + 1;
-    std::vector<Derivatives> ds(n);
-    std::vector<double> us(n);
+    thread_local GeometryScratch scratch;
+    std::vector<Derivatives>& ds = scratch.ds;
+    std::vector<double>& us = scratch.us;
+    ds.resize(n);
+    us.resize(n);
     for (std::size_t k = 0; k < n; ++k) {
       us[k] = k + 1 == n ? u1 : u0 + (u1 - u0) * static_cast<double>(k) / samples;
       ds[k] = k + 1 == n ? c.derivatives_left(us[k], 3) : c.derivatives(us[k], 3);
@@ -209,14 +241,13 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
       return d[1].norm() > speed_floor && !unit_tangent(d).isZero();
     };
     // unit tangent, curvature vector and its rate at a regular point, widening a bound
-    struct Local {
-      Vec3 tangent, curvature, rate;
-    };
+    using Local = LocalGeometry;
     const auto local = [](const Derivatives& d) {
       const auto [kv, kr] = curvature_vector_and_rate(d);
       return Local{unit_tangent(d), kv, kr};
     };
-    std::vector<Local> peaks;  // refined peaks of |K| or |dK/ds| between samples
+    std::vector<Local>& peaks = scratch.peaks;  // refined peaks of |K| or |dK/ds| between samples
+    peaks.clear();
     const auto add = [](const Local& l, PathGeometry& g, bool smallest) {
       const Vec3 at = l.tangent.cwiseAbs(), ak = l.curvature.cwiseAbs(), ar = l.rate.cwiseAbs();
       if (smallest) {
@@ -232,8 +263,12 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
       }
     };
     // |K| and |dK/ds| of each regular sample (-1: not regular)
-    std::vector<double> kappa(n, -1.0), rate(n, -1.0);
-    std::vector<Local> locals(n);  // of the regular samples
+    std::vector<double>& kappa = scratch.kappa;
+    std::vector<double>& rate = scratch.rate;
+    kappa.assign(n, -1.0);
+    rate.assign(n, -1.0);
+    std::vector<Local>& locals = scratch.locals;  // of the regular samples
+    locals.resize(n);
     for (std::size_t k = 0; k < n; ++k) {
       if (!regular(ds[k])) continue;
       const Local l = local(ds[k]);
@@ -331,15 +366,16 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
     // with no regular neighbour and each refined peak: a pair of its own, raised by the margins of
     // the ranges.
     // (the turn phi between regular neighbours k and k + 1, the same for every axis)
-    std::vector<double> turn(n, 0.0);
+    std::vector<double>& turn = scratch.turn;
+    turn.assign(n, 0.0);
     for (std::size_t k = 0; k + 1 < n; ++k)
       if (kappa[k] >= 0.0 && kappa[k + 1] >= 0.0)
         turn[k] = 2.0 * std::asin(std::min(1.0, 0.5 * (locals[k].tangent - locals[k + 1].tangent).norm()));
     for (int i = 0; i < 3; ++i) {
       const double raise_t = m * (hi_t_raw[i] - lo.tangent[i]) + arc_raise[i],
                    raise_k = m * (hi_k_raw[i] - lo.curvature[i]) + hi.max_kappa * arc_raise[i];
-      std::vector<std::array<double, 2>> pairs;
-      pairs.reserve(n + peaks.size());
+      std::vector<std::array<double, 2>>& pairs = scratch.pairs;
+      pairs.clear();
       const auto alone = [&](const Local& l) {
         pairs.push_back({std::min(1.0, std::abs(l.tangent[i]) + raise_t), std::abs(l.curvature[i]) + raise_k});
       };
@@ -357,7 +393,7 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
                          std::max(ka, kb) + kappa_ab * (phi * phi / 8.0 + arc_raise[i]) + m * std::abs(ka - kb)});
       }
       for (const Local& l : peaks) alone(l);
-      hi.set_pairs(i, std::move(pairs));
+      hi.set_pairs_in_place(i, pairs);
     }
     return hi;
   }

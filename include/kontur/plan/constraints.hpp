@@ -19,6 +19,7 @@
 #include <kontur/tolerances.hpp>
 
 #include <array>
+#include <span>
 #include <utility>
 
 namespace kontur::plan {
@@ -107,6 +108,8 @@ struct PathGeometry {
   [[nodiscard]] std::vector<std::array<double, 2>> axis_pairs(int i) const;
   /// Sets the pairs of axis i from any number of (|t_i|, |K_i|), reduced as above.
   void set_pairs(int i, std::vector<std::array<double, 2>> points);
+  /// The same, sorting and reducing `points` in place (no allocation).
+  void set_pairs_in_place(int i, std::span<std::array<double, 2>> points);
   /// The bounds of both stretches.
   void merge(const PathGeometry& other);
   /// Forget the curvature (a stretch the motion only stops in, or the straight comparison).
