@@ -4,8 +4,11 @@
 
 #include <array>
 #include <cmath>
+#include <kontur/geometry/corner_blend_curve.hpp>
 #include <kontur/geometry/helix_arc.hpp>
+#include <kontur/geometry/length.hpp>
 #include <kontur/geometry/line_segment.hpp>
+#include <kontur/plan/constraints.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <numbers>
 #include <random>
@@ -103,6 +106,54 @@ TEST(MotionPlanner, SquareCornersAreTakenWithinTheLimits) {
     EXPECT_LT(v_there, 1.0);
   }
   EXPECT_EQ(r.points.back().position, Vec3(0, 0, 0));
+}
+
+// A corner blend turns from zero curvature at its ends to its peak inside (docs/planner.md,
+// "Corner blending"): split_move cuts it (tolerances::plan_blend_parts) so that its ends, which
+// allow far more than its apex, get caps of their own, and the planner brakes inside the blend
+// instead of before it (naive_cam_corner1: 3.287 -> 3.200 s on the jerk = A / T machine).
+TEST(MotionPlanner, ACornerBlendIsCutSoThatTheChainBrakesInsideIt) {
+  // (jerk = A / T: the centripetal term sets the caps; with less jerk the curvature change at the
+  // blend's ends may cap them lower than its apex, which the cut follows as well)
+  Machine m = default_machine();
+  testing::set_every_axis(m, 500.0, 1000.0, 1000.0 / m.servo_period_s);
+  const double F = 400.0;  // [mm/s] above every cap on the blend
+  const Vec3 corner(100, 0, 0), t1(1, 0, 0), t2(0, 1, 0);
+  const double d = 10.0;  // [mm] trimmed on each line
+  const auto blend = std::make_shared<CornerBlendCurve>(corner, t1, t2, d);
+  const ArcLengthTable table(*blend);
+  const std::vector<MovePiece> pieces = split_move(*blend, table, F, m);
+  ASSERT_GE(pieces.size(), 3u);
+  double lowest = std::numeric_limits<double>::infinity();
+  std::vector<double> caps;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    if (i > 0) EXPECT_EQ(pieces[i].u0, pieces[i - 1].u1);
+    caps.push_back(speed_cap(pieces[i].geometry, F, m, tolerances::plan_centripetal_shares[0]));
+    lowest = std::min(lowest, caps.back());
+  }
+  EXPECT_EQ(pieces.front().u0, 0.0);
+  EXPECT_EQ(pieces.back().u1, 1.0);
+  EXPECT_GT(caps.front(), tolerances::plan_blend_cap_ratio * lowest);
+  EXPECT_GT(caps.back(), tolerances::plan_blend_cap_ratio * lowest);
+
+  // Through the planner (line, blend, line): within the limits, and at the blend's start faster
+  // than the whole blend could run at the largest centripetal share.
+  std::vector<Move> moves{line({0, 0, 0}, corner - d * t1, F), program::move_along(blend, F, false, 1),
+                          line(corner + d * t2, corner + 100.0 * t2, F)};
+  const RunResult r = run(m, moves);
+  const Usage u = usage(r, m);
+  EXPECT_LE(u.v, 1.0 + 1e-6);
+  EXPECT_LE(u.a, 1.0 + 1e-6);
+  EXPECT_LE(u.j, 1.0 + 1e-6);
+  const double whole_cap =
+      speed_cap(path_geometry(*blend, 0.0, 1.0), F, m, std::end(tolerances::plan_centripetal_shares)[-1]);
+  double best = 1e9, v_there = 0.0;
+  for (const auto& p : r.points)
+    if ((p.position - (corner - d * t1)).norm() < best) {
+      best = (p.position - (corner - d * t1)).norm();
+      v_there = p.v_mm_s;
+    }
+  EXPECT_GT(v_there, 1.005 * whole_cap);  // (uncut, the blend runs at most at whole_cap)
 }
 
 TEST(MotionPlanner, TangentLineArcLineKeepsItsSpeed) {

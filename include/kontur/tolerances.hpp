@@ -346,6 +346,17 @@ inline constexpr double plan_peak_refine_floor = 1e-20;
 /// most this many pieces.
 inline constexpr int plan_span_max_depth = 30;
 inline constexpr int plan_span_max_pieces = 256;
+/// A corner blend between two lines turns from zero curvature at its ends to its peak inside, and
+/// its ends join the lines smoothly: it is cut once into this many equal parts of its parameter
+/// where one part's cap is over plan_blend_cap_ratio times the whole's, so that the chain through
+/// it brakes inside the blend instead of before it (naive_cam_corner1, blends of 13-17 mm whose
+/// ends allow twice their apex's speed: 3.287 -> 3.200 s on the jerk = A / T machine, 3.343 ->
+/// 3.275 s on XYZ.ini). Once only: cut again (or at 1.1), the many pieces of a run of blends
+/// shortened what one held run of chains covers, and tangent_lines_smooth ran 20 % slower on XYZ.ini.
+/// Not the blends at arcs (TransitionCurve): there a chain through the cut blend took in the arc,
+/// which then ran at a chain's centripetal share (tangent_helix 2 % slower).
+inline constexpr int plan_blend_parts = 8;
+inline constexpr double plan_blend_cap_ratio = 1.2;
 /// The planner plans with every axis limit lowered by this share. The check differentiates the
 /// setpoints: a position noise e [mm] (the arc-length inverse is accurate to about 1e-13 of a
 /// move's length) shows as 8 e / T^3 of jerk, 1e-6 of the limit already at e = 1e-11 mm, T = 1 ms.

@@ -2,6 +2,7 @@
 #include <array>
 #include <cmath>
 #include <iterator>
+#include <kontur/geometry/corner_blend_curve.hpp>
 #include <kontur/geometry/differential.hpp>
 #include <kontur/geometry/line_segment.hpp>
 #include <kontur/plan/chain_profile.hpp>
@@ -25,42 +26,58 @@ double span_cap(const PathGeometry& g, double feed_mm_s, const Machine& machine)
   return speed_cap(g, feed_mm_s, machine, tolerances::plan_centripetal_shares[0]);
 }
 
+// How add_stretches cuts a span: into `parts` equal parts of its parameter where one part's cap
+// is over `ratio` times the whole's, at most `max_depth` times deep.
+struct StretchCut {
+  int parts = 4;
+  double ratio = tolerances::plan_piece_cap_ratio;
+  int max_depth = tolerances::plan_span_max_depth;
+};
+
+constexpr StretchCut kSpanCut{};
+// a corner blend between two lines (tolerances::plan_blend_parts)
+constexpr StretchCut kBlendCut{tolerances::plan_blend_parts, tolerances::plan_blend_cap_ratio, 1};
+constexpr int kMaxCutParts = std::max(kSpanCut.parts, kBlendCut.parts);
+
 // Appends [u0, u1] to `out`, cut in four while one part's cap is over plan_piece_cap_ratio times the
 // whole's (a tight turn in a span then slows only a short stretch around it; in four, not two: a
 // span tight at both ends and easy between has each half as slow as the whole). Only a cap set by
 // the curvature is looked at: the feed and the axis velocities do not change much within a span.
+// A corner blend is cut once, finer (kBlendCut).
 void add_stretches(const Curve& c, double u0, double u1, const PathGeometry& g, double cap, double feed_mm_s,
                    const Machine& machine, double speed_floor, int depth, std::vector<CapSpan>& out, int& budget) {
-  constexpr int parts = 4;
+  const StretchCut& cut = dynamic_cast<const CornerBlendCurve*>(&c) != nullptr ? kBlendCut : kSpanCut;
+  const int parts = cut.parts;
   PathGeometry straight = g;
   straight.drop_curvature();
   const bool bent = cap < span_cap(straight, feed_mm_s, machine);
-  // No part can be plan_piece_cap_ratio times faster where even the smallest sampled curvature
-  // and curvature change would not raise the cap that much (the parts are then not sampled).
+  // No part can be cut.ratio times faster where even the smallest sampled curvature and
+  // curvature change would not raise the cap that much (the parts are then not sampled).
   const auto may_pay = [&] {
     PathGeometry easiest = g;
     easiest.curvature = g.curvature_low;
     easiest.curvature_rate = g.curvature_rate_low;
     easiest.max_kappa = g.kappa_low;
-    return span_cap(easiest, feed_mm_s, machine) > tolerances::plan_piece_cap_ratio * cap;
+    return span_cap(easiest, feed_mm_s, machine) > cut.ratio * cap;
   };
-  if (bent && depth < tolerances::plan_span_max_depth && budget > parts - 1 && may_pay()) {
-    std::array<double, parts + 1> us{};
-    for (int i = 0; i <= parts; ++i) us[static_cast<std::size_t>(i)] = i == parts ? u1 : u0 + (u1 - u0) * i / parts;
+  if (bent && depth < cut.max_depth && budget > parts - 1 && may_pay()) {
+    const auto n = static_cast<std::size_t>(parts);
+    std::array<double, kMaxCutParts + 1> us{};
+    for (std::size_t i = 0; i <= n; ++i) us[i] = i == n ? u1 : u0 + (u1 - u0) * static_cast<double>(i) / parts;
     bool distinct = true;
-    for (int i = 0; i < parts; ++i) distinct = distinct && us[static_cast<std::size_t>(i)] < us[static_cast<std::size_t>(i) + 1];
+    for (std::size_t i = 0; i < n; ++i) distinct = distinct && us[i] < us[i + 1];
     if (distinct) {
-      std::array<PathGeometry, parts> gs;
-      std::array<double, parts> cs{};
+      std::array<PathGeometry, kMaxCutParts> gs;
+      std::array<double, kMaxCutParts> cs{};
       double best = 0.0;
-      for (std::size_t i = 0; i < parts; ++i) {
+      for (std::size_t i = 0; i < n; ++i) {
         gs[i] = path_geometry(c, us[i], us[i + 1], tolerances::plan_samples_per_span, speed_floor);
         cs[i] = span_cap(gs[i], feed_mm_s, machine);
         best = std::max(best, cs[i]);
       }
-      if (best > tolerances::plan_piece_cap_ratio * cap) {
+      if (best > cut.ratio * cap) {
         budget -= parts - 1;
-        for (std::size_t i = 0; i < parts; ++i)
+        for (std::size_t i = 0; i < n; ++i)
           add_stretches(c, us[i], us[i + 1], gs[i], cs[i], feed_mm_s, machine, speed_floor, depth + 1, out, budget);
         return;
       }
