@@ -607,6 +607,17 @@ TEST(CornerBlend, CheckerMeasuresAnArcBlendAgainstTheProgrammedArc) {
   EXPECT_GT(verify::blend_deviation(*out[1].curve, moved), 0.015);
 }
 
+// A random right-handed circle frame, its centre within 50 mm of the origin (draws: the normal, a
+// direction for e1, the centre).
+CircleFrame random_circle_frame(std::mt19937_64& rng) {
+  CircleFrame f;
+  f.normal = random_unit(rng);
+  f.e1 = f.normal.cross(random_unit(rng)).normalized();
+  f.e2 = f.normal.cross(f.e1);
+  f.centre = 50.0 * random_unit(rng);
+  return f;
+}
+
 // The distance [mm] from p to the part [u0, u1] of `arc` by brute force: the nearest of 20,001
 // points, refined by a golden-section search between its neighbours.
 double nearest_by_sampling(const HelixArc& arc, const Vec3& p, double u0, double u1) {
@@ -641,11 +652,7 @@ TEST(HelixArcDistance, EqualsTheNearestOfDenseSamplesOnCirclesHelicesAndSpirals)
   std::mt19937_64 rng(412);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int i = 0; i < 60; ++i) {
-    CircleFrame f;
-    f.normal = random_unit(rng);
-    f.e1 = f.normal.cross(random_unit(rng)).normalized();
-    f.e2 = f.normal.cross(f.e1);
-    f.centre = 50.0 * random_unit(rng);
+    const CircleFrame f = random_circle_frame(rng);
     const double r = 0.5 + 20.0 * unit(rng);
     const int kind = i % 3;
     // (helices of up to 2.5 turns)
@@ -677,11 +684,7 @@ TEST(HelixArcDistance, OnAHelixOfSeveralTurnsIsTheDistanceToTheNearestTurn) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   int off_their_point = 0;  // points nearer another point than the one they were drawn from
   for (int i = 0; i < 80; ++i) {
-    CircleFrame f;
-    f.normal = random_unit(rng);
-    f.e1 = f.normal.cross(random_unit(rng)).normalized();
-    f.e2 = f.normal.cross(f.e1);
-    f.centre = 50.0 * random_unit(rng);
+    const CircleFrame f = random_circle_frame(rng);
     const double r = 0.5 + 10.0 * unit(rng), turns = 1.0 + 5.0 * unit(rng);
     const double sweep = 2.0 * M_PI * turns, pitch = (0.05 + 2.0 * unit(rng)) * r;  // [mm] a turn
     // (helices, spirals with rise, and spirals with rise slight over 2 rad as rgh's ramps)
@@ -715,11 +718,7 @@ TEST(HelixArcDistance, OnASlightSpiralIsThePointAtTheSameAngleAboveTheNearestByA
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   int above = 0;  // distances measurably above the nearest
   for (int i = 0; i < 40; ++i) {
-    CircleFrame f;
-    f.normal = random_unit(rng);
-    f.e1 = f.normal.cross(random_unit(rng)).normalized();
-    f.e2 = f.normal.cross(f.e1);
-    f.centre = 50.0 * random_unit(rng);
+    const CircleFrame f = random_circle_frame(rng);
     const double r = 0.2 + 20.0 * unit(rng), sweep = 0.2 + 6.0 * unit(rng);
     const double dr = 2.0 * tolerances::arc_slight_spiral_slope * r * sweep * (unit(rng) - 0.5);
     const HelixArc arc(f, r, sweep, 0.0, dr);
