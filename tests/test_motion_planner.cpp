@@ -127,7 +127,9 @@ TEST(MotionPlanner, ACornerBlendIsCutSoThatTheChainBrakesInsideIt) {
   double lowest = std::numeric_limits<double>::infinity();
   std::vector<double> caps;
   for (std::size_t i = 0; i < pieces.size(); ++i) {
-    if (i > 0) EXPECT_EQ(pieces[i].u0, pieces[i - 1].u1);
+    if (i > 0) {
+      EXPECT_EQ(pieces[i].u0, pieces[i - 1].u1);
+    }
     caps.push_back(speed_cap(pieces[i].geometry, F, m, tolerances::plan_centripetal_shares[0]));
     lowest = std::min(lowest, caps.back());
   }

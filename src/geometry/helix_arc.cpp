@@ -15,7 +15,7 @@
 namespace kontur {
 
 namespace {
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr double kInf = std::numeric_limits<double>::infinity();
 }  // namespace
 
 HelixArc::HelixArc(const CircleFrame& frame, double radius_mm, double sweep_rad, double rise_mm,
@@ -84,7 +84,7 @@ double HelixArc::distance_mm(const Vec3& p, double u0, double u1) const noexcept
   // The nearest point [mm] of [lo, hi] (parameters) where f < 0 at lo and f > 0 at hi: Newton's
   // method keeps that bracket around the root (a local minimum), bisecting where a step leaves it.
   const auto root_within = [&](double lo, double hi) {
-    double best = kInfinity, u = 0.5 * (lo + hi);
+    double best = kInf, u = 0.5 * (lo + hi);
     for (int i = 0; i < tolerances::arc_distance_iterations; ++i) {
       const Derivatives d = derivatives(u, 2);
       const Vec3 r = d[0] - p;

@@ -85,12 +85,17 @@ double corner_acceleration_cap(const Vec3& dt, const Machine& machine, const Lin
   return v;
 }
 
-std::vector<std::array<double, 2>> PathGeometry::axis_pairs(int i) const {
+std::size_t PathGeometry::axis_pairs_into(int i, std::span<std::array<double, 2>> out) const noexcept {
   const AxisPairs& p = pairs[static_cast<std::size_t>(i)];
-  std::vector<std::array<double, 2>> out;
-  for (int j = 0; j < p.n; ++j) out.push_back({p.t[static_cast<std::size_t>(j)], p.k[static_cast<std::size_t>(j)]});
-  if (out.empty() && (tangent[i] > 0.0 || curvature[i] > 0.0)) out.push_back({tangent[i], curvature[i]});
-  return out;
+  std::size_t n = 0;
+  for (int j = 0; j < p.n; ++j) out[n++] = {p.t[static_cast<std::size_t>(j)], p.k[static_cast<std::size_t>(j)]};
+  if (n == 0 && (tangent[i] > 0.0 || curvature[i] > 0.0)) out[n++] = {tangent[i], curvature[i]};
+  return n;
+}
+
+std::vector<std::array<double, 2>> PathGeometry::axis_pairs(int i) const {
+  std::array<std::array<double, 2>, tolerances::plan_acceleration_pairs> out;
+  return {out.begin(), out.begin() + static_cast<std::ptrdiff_t>(axis_pairs_into(i, out))};
 }
 
 void PathGeometry::set_pairs(int i, std::vector<std::array<double, 2>> points) {
@@ -136,16 +141,11 @@ void PathGeometry::drop_curvature() noexcept {
 }
 
 void PathGeometry::merge(const PathGeometry& o) {
-  // (each side's pairs, or its maxima as one pair: axis_pairs, without allocating)
   std::array<std::array<double, 2>, 2 * tolerances::plan_acceleration_pairs> both;
   for (int i = 0; i < 3; ++i) {
-    std::size_t n = 0;
-    for (const PathGeometry* g : {static_cast<const PathGeometry*>(this), &o}) {
-      const AxisPairs& p = g->pairs[static_cast<std::size_t>(i)];
-      for (int j = 0; j < p.n; ++j) both[n++] = {p.t[static_cast<std::size_t>(j)], p.k[static_cast<std::size_t>(j)]};
-      if (p.n == 0 && (g->tangent[i] > 0.0 || g->curvature[i] > 0.0)) both[n++] = {g->tangent[i], g->curvature[i]};
-    }
-    set_pairs_in_place(i, std::span<std::array<double, 2>>(both.data(), n));
+    const std::size_t n = axis_pairs_into(i, both);
+    const std::size_t m = o.axis_pairs_into(i, std::span(both).subspan(n));
+    set_pairs_in_place(i, std::span(both).first(n + m));
   }
   tangent = tangent.cwiseMax(o.tangent);
   curvature = curvature.cwiseMax(o.curvature);
@@ -203,7 +203,10 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
       g.curvature = g.curvature_low = kv.cwiseAbs();
       g.curvature_rate = g.curvature_rate_low = kr.cwiseAbs();
       g.max_kappa = g.kappa_low = kv.norm();
-      for (int i = 0; i < 3; ++i) g.set_pairs(i, {{std::min(1.0, std::abs(t[i])), std::abs(kv[i])}});
+      for (int i = 0; i < 3; ++i) {
+        std::array<std::array<double, 2>, 1> one{{{std::min(1.0, std::abs(t[i])), std::abs(kv[i])}}};
+        g.set_pairs_in_place(i, one);
+      }
       return g;
     }
   }
@@ -211,6 +214,7 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
   // one span); then a component's peak lies at most about 1 % of its range above the samples.
   // On an arc also its angle (a steep helix turns its tangent less than its angle).
   const ArcSpan arc = arc_span(c);
+  thread_local GeometryScratch scratch;
   // (an end point's rounding leaves a change of radius of a few ulps: 8.9e-16 mm on an arc of
   // 2.54 mm in arc-terminal; up to arc_radius_change_exact of the radius it counts as a
   // circle whose magnitudes vary by that share, which the bounds add twice)
@@ -224,7 +228,6 @@ PathGeometry path_geometry(const Curve& c, double u0, double u1, int samples, do
     Vec3 t_before = Vec3::Zero();
     // The span's own polynomial at its right end (the next span may differ there).
     const auto n = static_cast<std::size_t>(samples) + 1;
-    thread_local GeometryScratch scratch;
     std::vector<Derivatives>& ds = scratch.ds;
     std::vector<double>& us = scratch.us;
     ds.resize(n);

@@ -46,9 +46,11 @@ public:
   /// rise, no change of radius) exactly: from p's angle about the centre, the foot on the circle
   /// where that angle lies within the part, else the nearer end; on a slight spiral
   /// (tolerances::arc_slight_spiral_slope) the same way, to its point at p's angle (at most 4.5e-4
-  /// of the distance above it). On another spiral, Newton's method on (C(u) - p) . C'(u) = 0 from
-  /// the parameter of p's angle (a point near the arc: a few steps); on a helix from the nearest
-  /// of 8 points a turn; always the distance to a point of the part.
+  /// of the distance above it). On a helix or another spiral, the nearest of the local minima in
+  /// each turn about p's angle (on a helix within the window where the squared distance is convex,
+  /// a spiral's turn in tolerances::arc_distance_spiral_parts parts), each by Newton's method on
+  /// (C(u) - p) . C'(u) = 0 kept inside a sign bracket, the turns in the order of their axial
+  /// distance from p until it passes the nearest found; always the distance to a point of the part.
   [[nodiscard]] double distance_mm(const Vec3& p, double u0, double u1) const noexcept;
 
 private:

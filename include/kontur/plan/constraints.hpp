@@ -106,6 +106,8 @@ struct PathGeometry {
   std::array<AxisPairs, 3> pairs{};
   /// The pairs of axis i, or the maxima as one pair where none were sampled ({t, k} each).
   [[nodiscard]] std::vector<std::array<double, 2>> axis_pairs(int i) const;
+  /// The same written to `out` (room for plan_acceleration_pairs): how many.
+  std::size_t axis_pairs_into(int i, std::span<std::array<double, 2>> out) const noexcept;
   /// Sets the pairs of axis i from any number of (|t_i|, |K_i|), reduced as above.
   void set_pairs(int i, std::vector<std::array<double, 2>> points);
   /// The same, sorting and reducing `points` in place (no allocation).
