@@ -295,8 +295,8 @@ TEST(ChainProfile, SeededRandomChainsKeepEachStretchsOwnLimits) {
 
 // Issue 12: on a curve the centripetal part leaves more acceleration at lower speeds. A chain of
 // curved stretches speeds up under their speed bands, far harder than at the acceleration left at
-// the cap, and keeps each band at each speed. It brakes by one S-curve at the limits of the speed
-// it brakes from (here the band up to 0.85 of the cap: 280 mm/s^2, not the cap's 100).
+// the cap, and keeps each band at each speed. It brakes under the bands too (harder as it slows:
+// at least the band up to 0.85 of the cap, 280 mm/s^2, not the cap's 100).
 TEST(ChainProfile, CurvedStretchesSpeedUpUnderTheirSpeedBands) {
   std::vector<CapStretch> st;
   for (int k = 0; k < 4; ++k) st.push_back({5.0, 100.0, 100.0, 1e5, bands_of(100.0, 100.0, 7.0, 0.9e5)});
@@ -314,6 +314,26 @@ TEST(ChainProfile, CurvedStretchesSpeedUpUnderTheirSpeedBands) {
   }
   EXPECT_GT(a_max, 0.95 * 700.0);
   EXPECT_LT(a_min, -2.5 * 100.0);
+}
+
+// The braking from a curved stretch's cap to a stop: under the bands of the stretches it runs
+// through, harder as it slows (tangent_helix on XYZ.ini braked off its helix at the acceleration
+// left at the cap, 248 mm/s^2, over 38 mm where the bands allow 650 mm/s^2 below half the cap).
+TEST(ChainProfile, BrakesFromTheCapUnderTheSpeedBandsItRunsThrough) {
+  // a short straight stretch, then a long curved one
+  std::vector<CapStretch> st{{2.0, 100.0, 800.0, 8e4, {}}, {150.0, 100.0, 100.0, 7e4, bands_of(100.0, 100.0, 7.0, 6e4)}};
+  const PathLimits ceiling{100.0, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  const PathLimits at_cap{100.0, 100.0, 6e4};
+  const ScurveProfile braking_at_cap = plan_scurve(152.0, 100.0, 0.0, at_cap);
+  const auto p = plan_chain_profile(st, 100.0, 0.0, ceiling, 0.0005, braking_at_cap.duration());
+  ASSERT_TRUE(p.has_value());
+  expect_within_own_bands(*p, st);
+  EXPECT_EQ(p->end_velocity(), 0.0);
+  // the braking at the cap's 100 mm/s^2 takes 1 s over 50 mm; under the bands far less
+  EXPECT_LT(p->duration(), braking_at_cap.duration() - 0.3);
+  double a_min = 0.0;
+  for (int k = 0; k <= 4000; ++k) a_min = std::min(a_min, p->sample(p->duration() * k / 4000).a);
+  EXPECT_LT(a_min, -0.95 * 700.0);  // the lowest band's
 }
 
 TEST(ChainProfile, SeededRandomBandedChainsKeepEachStretchsBands) {

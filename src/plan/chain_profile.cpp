@@ -1,5 +1,7 @@
 #include <algorithm>
+#include <array>
 #include <bit>
+#include <iterator>
 #include <cmath>
 #include <kontur/plan/chain_profile.hpp>
 #include <kontur/tolerances.hpp>
@@ -101,11 +103,10 @@ class ChainPlanner {
   ChainPlanner(std::span<const CapStretch> stretches, double v0, double v1, const PathLimits& limits, bool cautious)
       : v0_(v0), v1_(v1), stretches_(stretches), limits_(limits) {
     bounds_.push_back(0.0);
-    bool banded = false;
     for (const CapStretch& c : stretches) {
       bounds_.push_back(bounds_.back() + c.length_mm);
       caps_.push_back(c.cap_mm_s);
-      banded = banded || c.bands.n > 0;
+      banded_ = banded_ || c.bands.n > 0;
     }
     length_ = bounds_.back();
     min_cap_ = RangeMin(caps_);
@@ -114,7 +115,7 @@ class ChainPlanner {
     slack_v_ = tolerances::chain_profile_speed_slack * top;
     // The limits at speed levels (shares of the largest cap), each stretch's at its band that
     // holds up to the level; without bands, one level: every stretch's at its cap.
-    if (banded)
+    if (banded_)
       for (const double f : tolerances::chain_profile_speed_levels) levels_.push_back(f * top);
     levels_.push_back(std::numeric_limits<double>::infinity());
     std::vector<double> acc(stretches.size()), jerk(stretches.size());
@@ -223,16 +224,19 @@ class ChainPlanner {
 
   // Room left [mm] for the manoeuvre from x towards junction m (speed at most junction_speed(m)
   // there) or the end (speed exactly v1), its S-curve at the smallest limits of the stretches it
-  // runs through; negative if it no longer fits; +infinity if that junction does not ask for it.
-  [[nodiscard]] double room(const Kin& x, const Ease& e, std::size_t m) const {
+  // runs through (under their bands: change_distance); negative if it no longer fits; +infinity if
+  // that junction does not ask for it. `sign_only`: only whether it is negative counts (a room of
+  // at least zero at the limits of the top speed is given as it is).
+  [[nodiscard]] double room(const Kin& x, const Ease& e, std::size_t m, bool sign_only = false) const {
     const bool end = m == caps_.size();
     const double w = landing_speed(m, e.v_end), dist = bounds_[m] - x.s, from = x.s + e.distance_mm;
+    const double enough = sign_only ? dist - e.distance_mm : 0.0;
     if (e.v_end > w)
-      return dist - e.distance_mm - change_distance(from, bounds_[m], e.v_end, w);
+      return dist - e.distance_mm - change_distance(from, bounds_[m], e.v_end, w, enough);
     if (e.v_end < w) {
       // speeding up to it: only once no smaller cap lies between (that one binds first)
       if (min_cap(x.s, bounds_[m]) + slack_v_ < w) return std::numeric_limits<double>::infinity();
-      return dist - e.distance_mm - change_distance(from, bounds_[m], e.v_end, w);
+      return dist - e.distance_mm - change_distance(from, bounds_[m], e.v_end, w, enough);
     }
     return end ? dist - e.distance_mm : std::numeric_limits<double>::infinity();
   }
@@ -256,10 +260,48 @@ class ChainPlanner {
     return limits_inside(from, to, top);
   }
 
-  // Its distance [mm].
-  [[nodiscard]] double change_distance(double from, double to, double v, double w) const {
+  // Its distance [mm]: on a chain with speed levels, under the bands of those stretches (more
+  // acceleration at the lower speeds of the change), else at their limits at its top speed. (A
+  // distance up to `enough` [mm] serves as well as the exact one: where the change at the limits
+  // of its top speed is no longer, the bands are not looked at.)
+  [[nodiscard]] double change_distance(double from, double to, double v, double w, double enough = 0.0) const {
     const Lim l = change_limits(from, to, v, w);
-    return velocity_change_distance(v, w, l.a, l.j);
+    const double constant = velocity_change_distance(v, w, l.a, l.j);
+    if (!banded_ || constant <= enough) return constant;
+    return std::min(constant, banded_change_distance(std::min(v, w), std::max(v, w), change_bands(from, to, v, w, l)));
+  }
+
+  // The speed bands of the stretches a change of speed from v to w between distances from and to
+  // [mm] runs through (those change_limits found, whose limits at the change's top speed are l):
+  // up to each speed level between the change's speeds, the smallest of their limits that hold up
+  // to it; up to the top (max(v, w, peak)), l.
+  [[nodiscard]] AccelerationBands change_bands(double from, double to, double v, double w, const Lim& l,
+                                               double peak = 0.0) const {
+    static_assert(std::size(tolerances::chain_profile_speed_levels) < AccelerationBands::kMax);
+    const bool braking = v > w;
+    const double top = std::max({v, w, peak}), low = std::min(v, w);
+    // (the range change_limits settled on: the stretches within its distance at l)
+    const double d = velocity_change_distance(v, w, l.a, l.j);
+    const double a = braking ? std::max(from, to - d) : from, b = braking ? to : std::min(to, from + d);
+    const std::size_t last = stretch_ending_at(b), first = std::min(stretch_at(a), last);
+    AccelerationBands bands;
+    bands.max_jerk = l.j;
+    const auto add = [&](double top_mm_s, double acceleration) {
+      bands.top_mm_s[static_cast<std::size_t>(bands.n)] = top_mm_s;
+      bands.acceleration[static_cast<std::size_t>(bands.n)] = acceleration;
+      ++bands.n;
+    };
+    for (std::size_t k = 0; k + 1 < levels_.size(); ++k) {
+      if (!(levels_[k] > low) || !(levels_[k] < top - slack_v_)) continue;
+      add(levels_[k], std::max(min_acc_[k](first, last), l.a));
+      bands.max_jerk = std::min(bands.max_jerk, min_jerk_[k](first, last));
+    }
+    add(top, l.a);
+    // (accelerations not rising with the speed: a level's limits also hold below it)
+    for (int k = bands.n - 2; k >= 0; --k)
+      bands.acceleration[static_cast<std::size_t>(k)] =
+          std::max(bands.acceleration[static_cast<std::size_t>(k)], bands.acceleration[static_cast<std::size_t>(k + 1)]);
+    return bands;
   }
 
   // Smallest limits over the stretches that the interval (a, b) [mm] runs through, at speeds up to
@@ -307,12 +349,12 @@ class ChainPlanner {
       if (e.v_end <= w) continue;
       // (braking at the smallest limits up to it fits: no need to find the stretches it runs through)
       if (room_at_least(x, e, m, w) >= 0.0) continue;
-      if (room(x, e, m) < 0.0) return false;
+      if (room(x, e, m, true) < 0.0) return false;
     }
     // the end, which must be met exactly, is always looked at: speeding up to it may take longer
     // than stopping
     if (!(e.v_end < v1_) && room_at_least(x, e, end, v1_) >= 0.0) return true;
-    return room(x, e, end) >= 0.0;
+    return room(x, e, end, true) >= 0.0;
   }
 
   // A lower bound on the room [mm] for braking from x to speed w at junction m: at the smallest
@@ -379,9 +421,10 @@ class ChainPlanner {
         x = advance(x, e.jerk, e.duration_s);
         x.a = 0.0;
       }
-      // One S-curve to the junction, at the smallest limits from x to it (as it was judged); where
-      // it would pass a junction before it too fast, it aims at that one instead.
-      ScurveProfile c;
+      // One S-curve to the junction, at the smallest limits from x to it, or under their speed
+      // bands (as it was judged: room()); where it would pass a junction before it too fast, it
+      // aims at that one instead.
+      trajectory::PathProfile c;
       double w = 0.0;
       for (;;) {
         w = landing_speed(bind, x.v);
@@ -390,7 +433,13 @@ class ChainPlanner {
         const double dist = bounds_[bind] - x.s;
         if (!(dist >= 0.0) || x.v < 0.0) return std::nullopt;
         const PathLimits pl{peak, l.a, l.j};
-        c = plan_scurve(dist, x.v, w, pl);
+        c = trajectory::PathProfile(plan_scurve(dist, x.v, w, pl));
+        // (under the bands where that is faster, or where only that reaches w)
+        if (banded_)
+          if (std::optional<trajectory::PathProfile> q =
+                  plan_banded_profile(dist, x.v, w, change_bands(x.s, bounds_[bind], x.v, w, l, peak));
+              q && (q->duration() < c.duration() || !(std::abs(c.end_velocity() - w) <= slack_v_)))
+            c = std::move(*q);
         if (!(std::abs(c.end_velocity() - w) <= slack_v_)) return std::nullopt;
         std::size_t over = bind;
         for (std::size_t m = stretch_at(x.s) + 1; m < bind && over == bind; ++m)
@@ -400,13 +449,52 @@ class ChainPlanner {
       }
       const bool end = bind == caps_.size();
       const double target = bounds_[bind];
-      trajectory::append_phases(c, t, x.s, phases);
+      append_by_level(c, t, x.s, phases);
       t += c.duration();
       x = {target, w, 0.0};
       if (end) break;
     }
     if (!fits(phases, t)) return std::nullopt;
     return trajectory::PathProfile(std::move(phases), t, {length_, v1_, 0.0, 0.0});
+  }
+
+  // Appends a manoeuvre's phases, shifted by t0_s [s] and s0_mm [mm], each cut where its speed
+  // passes a speed level: a banded change's ramp runs through several bands, and fits() judges
+  // each phase by the band of its highest speed.
+  void append_by_level(const trajectory::PathProfile& c, double t0_s, double s0_mm,
+                       std::vector<ProfilePhase>& out) const {
+    const std::size_t first = out.size();
+    c.append_phases_to(t0_s, s0_mm, out);
+    if (levels_.size() < 2) return;
+    std::vector<ProfilePhase> own(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
+    out.resize(first);
+    for (std::size_t k = 0; k < own.size(); ++k) {
+      const ProfilePhase& p = own[k];
+      const double dt = (k + 1 < own.size() ? own[k + 1].t0_s : t0_s + c.duration()) - p.t0_s;
+      const Kin x{p.start.s, p.start.v, p.start.a};
+      out.push_back(p);
+      if (!(dt > 0.0) || (p.jerk == 0.0 && p.start.a == 0.0)) continue;
+      // (the speed is monotone within a phase of a change: its acceleration keeps its sign)
+      const Kin y = advance(x, p.jerk, dt);
+      const double lo = std::min(x.v, y.v), hi = std::max(x.v, y.v);
+      std::vector<double> cuts;
+      for (std::size_t m = 0; m + 1 < levels_.size(); ++m) {
+        if (!(levels_[m] > lo && levels_[m] < hi)) continue;
+        double a = 0.0, b = dt;  // bisection for the time the speed passes the level
+        const bool rising = y.v > x.v;
+        for (int it = 0; it < 200; ++it) {
+          const double mid = 0.5 * (a + b);
+          if (mid <= a || mid >= b) break;
+          ((advance(x, p.jerk, mid).v < levels_[m]) == rising ? a : b) = mid;
+        }
+        cuts.push_back(b);
+      }
+      std::sort(cuts.begin(), cuts.end());
+      for (const double tau : cuts) {
+        const Kin z = advance(x, p.jerk, tau);
+        out.push_back({p.t0_s + tau, {z.s, z.v, z.a, p.jerk}, p.jerk});
+      }
+    }
   }
 
   // Every phase within the cap, acceleration and jerk limits of each stretch it runs through, over
@@ -475,6 +563,7 @@ class ChainPlanner {
   // [level]: each stretch's limits at speeds up to the level, and their minima over ranges
   std::vector<RangeMin> min_acc_, min_jerk_;
   double length_ = 0.0, slack_v_ = 0.0;
+  bool banded_ = false;  // a stretch has speed bands: the limits are looked up by speed level
 };
 
 }  // namespace

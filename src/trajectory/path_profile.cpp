@@ -23,6 +23,16 @@ void append_phases(const ScurveProfile& s, double t0_s, double s0_mm, std::vecto
   }
 }
 
+void PathProfile::append_phases_to(double t0_s, double s0_mm, std::vector<ProfilePhase>& out) const {
+  if (!data_) return;
+  for (const ProfilePhase& p : data_->phases) {
+    ProfilePhase q = p;
+    q.t0_s += t0_s;
+    q.start.s += s0_mm;
+    out.push_back(q);
+  }
+}
+
 PathProfile::PathProfile(const ScurveProfile& s) {
   std::vector<ProfilePhase> phases;
   append_phases(s, 0.0, 0.0, phases);

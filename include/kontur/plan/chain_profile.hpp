@@ -8,10 +8,11 @@
 // Method: a greedy step in time. At every step of `step_s` the largest jerk of {+J, 0, -J}
 // (clamped so that |a| <= A; J and A of the stretches the step runs through) is taken whose next
 // state is still safe: from it, bringing the acceleration to zero (at the smallest jerk of the
-// stretches that takes) and then one S-curve change of speed reaches every junction ahead at or
-// below its cap, and the end at exactly its end speed. That S-curve is judged at the smallest
-// limits of the stretches it runs through: braking, it cruises first and brakes at the end, so
-// only the stretches before the junction that the braking covers count. When no jerk is safe,
+// stretches that takes) and then one change of speed reaches every junction ahead at or below
+// its cap, and the end at exactly its end speed. That change is judged at the smallest limits of
+// the stretches it runs through: braking, it cruises first and brakes at the end, so only the
+// stretches before the junction that the braking covers count; where stretches have speed bands,
+// under bands of those limits at speed levels (harder as it slows). When no jerk is safe,
 // that manoeuvre is carried out, exactly, towards the constraint that binds; where its S-curve
 // would pass an earlier junction above that junction's speed, it aims at that junction instead.
 // The profile ends exactly at its length and end speed. The result is checked phase by phase

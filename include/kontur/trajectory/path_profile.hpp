@@ -43,6 +43,9 @@ class PathProfile {
   [[nodiscard]] PathState sample(double t) const noexcept;
   /// The first time [s] at which the profile has covered `s_mm` (bisection).
   [[nodiscard]] double time_at(double s_mm) const noexcept;
+  /// Appends its phases, shifted by t0_s [s] and s0_mm [mm] (as append_phases does an S-curve's):
+  /// a profile as a part of a longer one.
+  void append_phases_to(double t0_s, double s0_mm, std::vector<ProfilePhase>& out) const;
 
  private:
   struct Data {
