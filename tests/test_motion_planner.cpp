@@ -8,6 +8,7 @@
 #include <kontur/geometry/helix_arc.hpp>
 #include <kontur/geometry/length.hpp>
 #include <kontur/geometry/line_segment.hpp>
+#include <kontur/geometry/transition_curve.hpp>
 #include <kontur/plan/constraints.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <numbers>
@@ -156,6 +157,60 @@ TEST(MotionPlanner, ACornerBlendIsCutSoThatTheChainBrakesInsideIt) {
       v_there = p.v_mm_s;
     }
   EXPECT_GT(v_there, 1.005 * whole_cap);  // (uncut, the blend runs at most at whole_cap)
+}
+
+// The blend of a line into an arc (a TransitionCurve) is cut like a corner blend, so that the chain
+// brakes inside it; but not where its parts would take under plan_blend_part_min_periods servo
+// periods each at its cap (a spiral of tiny arcs, spiral_tight_circular, ran 2 % slower cut).
+TEST(MotionPlanner, ALineToArcBlendIsCutUnlessItsPartsAreTooShortToBrakeIn) {
+  Machine m = default_machine();
+  testing::set_every_axis(m, 500.0, 1000.0, 1000.0 / m.servo_period_s);
+  const double F = 400.0;  // [mm/s] above every cap on the blend
+  const auto transition = [](double scale) {  // [mm]: a line's end into an arc of radius 15 scale
+    const double turn = 20.0 * std::numbers::pi / 180.0;
+    const Vec3 t(std::cos(turn), std::sin(turn), 0.0), n(-std::sin(turn), std::cos(turn), 0.0);
+    return std::make_shared<TransitionCurve>(CurveEnd{Vec3::Zero(), Vec3::UnitX(), Vec3::Zero()},
+                                             CurveEnd{scale * Vec3(10.0, 1.5, 0.0), t, n / (15.0 * scale)});
+  };
+  const auto caps_of = [&](const Curve& c) {
+    const ArcLengthTable table(c);
+    std::vector<double> caps;
+    for (const MovePiece& p : split_move(c, table, F, m))
+      caps.push_back(speed_cap(p.geometry, F, m, tolerances::plan_centripetal_shares[0]));
+    return caps;
+  };
+  const auto large = transition(1.0);
+  const std::vector<double> caps = caps_of(*large);
+  ASSERT_GE(caps.size(), 3u);
+  EXPECT_GT(caps.front(), tolerances::plan_blend_cap_ratio * *std::min_element(caps.begin(), caps.end()));
+  // the same shape 1000 times smaller: its caps' ratios are the same, its parts 0.01 of a period
+  const auto tiny = transition(1e-3);
+  const double tiny_cap = speed_cap(path_geometry(*tiny, 0.0, 1.0), F, m, tolerances::plan_centripetal_shares[0]);
+  EXPECT_LT(length(*tiny) / tolerances::plan_blend_parts,
+            tolerances::plan_blend_part_min_periods * m.servo_period_s * tiny_cap);
+  double best_part = 0.0;  // (a part's cap would pay for the cut as on the large one)
+  for (int i = 0; i < tolerances::plan_blend_parts; ++i)
+    best_part = std::max(best_part, speed_cap(path_geometry(*tiny, i / double(tolerances::plan_blend_parts),
+                                                            (i + 1) / double(tolerances::plan_blend_parts)),
+                                              F, m,
+                                              tolerances::plan_centripetal_shares[0]));
+  EXPECT_GT(best_part, tolerances::plan_blend_cap_ratio * tiny_cap);
+  EXPECT_EQ(caps_of(*tiny).size(), 1u);
+  // Through the planner (line, blend, arc): within the limits.
+  const CurveEnd arc_start{large->point(1.0), large->derivatives(1.0, 1)[1].normalized(), Vec3::Zero()};
+  CircleFrame f;
+  const double turn = 20.0 * std::numbers::pi / 180.0;
+  f.e2 = Vec3(std::cos(turn), std::sin(turn), 0.0);
+  f.e1 = Vec3(std::sin(turn), -std::cos(turn), 0.0);  // from the centre to the arc's start
+  f.centre = arc_start.point - 15.0 * f.e1;
+  const auto arc = std::make_shared<HelixArc>(f, 15.0, std::numbers::pi / 2);
+  ASSERT_LT((arc->point(0.0) - arc_start.point).norm(), 1e-9);
+  const RunResult r = run(m, {line({-50, 0, 0}, {0, 0, 0}, F), program::move_along(large, F, false, 1),
+                              program::move_along(arc, F, false, 2)});
+  const Usage u = usage(r, m);
+  EXPECT_LE(u.v, 1.0 + 1e-6);
+  EXPECT_LE(u.a, 1.0 + 1e-6);
+  EXPECT_LE(u.j, 1.0 + 1e-6);
 }
 
 TEST(MotionPlanner, TangentLineArcLineKeepsItsSpeed) {

@@ -353,9 +353,14 @@ inline constexpr int plan_span_max_pieces = 256;
 /// ends allow twice their apex's speed: 3.287 -> 3.200 s on the jerk = A / T machine, 3.343 ->
 /// 3.275 s on XYZ.ini). Once only: cut again (or at 1.1), the many pieces of a run of blends
 /// shortened what one held run of chains covers, and tangent_lines_smooth ran 20 % slower on XYZ.ini.
-/// Not the blends at arcs (TransitionCurve): there a chain through the cut blend took in the arc,
-/// which then ran at a chain's centripetal share (tangent_helix 2 % slower).
+/// The blends at arcs (TransitionCurve) too, since a chain's manoeuvres brake under the speed bands
+/// (before, the cut slowed tangent_helix by 2 %: its helix, chained with the cut blend, braked at
+/// the acceleration left at its cap).
 inline constexpr int plan_blend_parts = 8;
+/// ... a blend at an arc only where each part takes at least this many servo periods at the whole
+/// blend's cap (shorter parts cannot be braked in: spiral_tight_circular, a spiral of arcs with
+/// blends of 0.05-0.3 mm, ran 2.7 % slower on the default machine with them cut).
+inline constexpr double plan_blend_part_min_periods = 2.0;
 inline constexpr double plan_blend_cap_ratio = 1.2;
 /// The planner plans with every axis limit lowered by this share. The check differentiates the
 /// setpoints: a position noise e [mm] (the arc-length inverse is accurate to about 1e-13 of a
@@ -411,7 +416,8 @@ inline constexpr std::size_t plan_chain_max_pieces = 256;
 /// through one profile over all of them where that is faster than each through its own (their
 /// junctions then carry the acceleration); where it is not, each half of them (of at least
 /// plan_held_split_chains chains) is looked at the same way. A run is released after at most
-/// plan_held_max_pieces pieces, and before a chain whose smallest path acceleration differs from
+/// plan_held_max_pieces moves' pieces (the parts of a cut blend or span count as one: cutting the
+/// blends at arcs otherwise shortened the runs), and before a chain whose smallest path acceleration differs from
 /// the run's first by more than plan_held_acceleration_ratio. On performance/3D_Chips (XYZ.ini),
 /// without halves: 256 pieces and a ratio of 4 gave 62.9 s, 24 and 2 62.5 s (each chain alone:
 /// 63.8 s; 12 or 16 pieces, or a ratio of 1.5, slower again); with halves 62.42 s (64 pieces and

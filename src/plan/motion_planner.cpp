@@ -5,6 +5,7 @@
 #include <kontur/geometry/corner_blend_curve.hpp>
 #include <kontur/geometry/differential.hpp>
 #include <kontur/geometry/line_segment.hpp>
+#include <kontur/geometry/transition_curve.hpp>
 #include <kontur/plan/chain_profile.hpp>
 #include <kontur/plan/motion_planner.hpp>
 #include <kontur/tolerances.hpp>
@@ -46,8 +47,16 @@ constexpr int kMaxCutParts = std::max(kSpanCut.parts, kBlendCut.parts);
 // A corner blend is cut once, finer (kBlendCut).
 void add_stretches(const Curve& c, double u0, double u1, const PathGeometry& g, double cap, double feed_mm_s,
                    const Machine& machine, double speed_floor, int depth, std::vector<CapSpan>& out, int& budget) {
-  const StretchCut& cut = dynamic_cast<const CornerBlendCurve*>(&c) != nullptr ? kBlendCut : kSpanCut;
+  const bool transition = dynamic_cast<const TransitionCurve*>(&c) != nullptr;
+  const bool blend = dynamic_cast<const CornerBlendCurve*>(&c) != nullptr || transition;
+  const StretchCut& cut = blend ? kBlendCut : kSpanCut;
   const int parts = cut.parts;
+  // (a blend is cut only where each part takes a few servo periods at the whole's cap: its chord
+  // bounds its length from below)
+  const auto long_enough = [&] {
+    return !transition || (c.point(u1) - c.point(u0)).norm() >=
+                         parts * tolerances::plan_blend_part_min_periods * machine.servo_period_s * cap;
+  };
   PathGeometry straight = g;
   straight.drop_curvature();
   const bool bent = cap < span_cap(straight, feed_mm_s, machine);
@@ -60,7 +69,7 @@ void add_stretches(const Curve& c, double u0, double u1, const PathGeometry& g, 
     easiest.max_kappa = g.kappa_low;
     return span_cap(easiest, feed_mm_s, machine) > cut.ratio * cap;
   };
-  if (bent && depth < cut.max_depth && budget > parts - 1 && may_pay()) {
+  if (bent && depth < cut.max_depth && budget > parts - 1 && long_enough() && may_pay()) {
     const auto n = static_cast<std::size_t>(parts);
     std::array<double, kMaxCutParts + 1> us{};
     for (std::size_t i = 0; i <= n; ++i) us[i] = i == n ? u1 : u0 + (u1 - u0) * static_cast<double>(i) / parts;
@@ -613,7 +622,8 @@ void MotionPlanner::release_ready() {
         release_held();
     }
     const bool joins_next = chain.smooth_end;
-    held_pieces_ += chain.pieces.size();
+    for (std::size_t k = 0; k < chain.pieces.size(); ++k)
+      if (k == 0 || chain.pieces[k].segment.move != chain.pieces[k - 1].segment.move) ++held_pieces_;
     held_.push_back({std::move(chain), lookahead_.pop()});
     if (!joins_next || held_pieces_ >= tolerances::plan_held_max_pieces) release_held();
   }

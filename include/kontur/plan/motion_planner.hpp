@@ -140,7 +140,7 @@ class MotionPlanner {
     trajectory::PathProfile planned;  // the look-ahead's
   };
   std::vector<Planned> held_;            // chains out of the look-ahead, each joining the next smoothly
-  std::size_t held_pieces_ = 0;          // their pieces
+  std::size_t held_pieces_ = 0;          // their pieces, those of one move counted once
   Chain open_;                           // the chain being built (its last piece's end not yet known)
   std::optional<Derivatives> last_end_;  // end of the last move pushed (for the junction)
   ExtraAxes last_rate_{};                // its extra axes' rates dq/ds (signed)
