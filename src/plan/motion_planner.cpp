@@ -44,15 +44,16 @@ constexpr int kMaxCutParts = std::max(kSpanCut.parts, kBlendCut.parts);
 // whole's (a tight turn in a span then slows only a short stretch around it; in four, not two: a
 // span tight at both ends and easy between has each half as slow as the whole). Only a cap set by
 // the curvature is looked at: the feed and the axis velocities do not change much within a span.
-// A corner blend is cut once, finer (kBlendCut).
+// A corner blend is cut once, finer (kBlendCut); so is a blend at an arc whose parts are long
+// enough to brake in (tolerances::plan_blend_part_min_periods).
 void add_stretches(const Curve& c, double u0, double u1, const PathGeometry& g, double cap, double feed_mm_s,
                    const Machine& machine, double speed_floor, int depth, std::vector<CapSpan>& out, int& budget) {
   const bool transition = dynamic_cast<const TransitionCurve*>(&c) != nullptr;
   const bool blend = dynamic_cast<const CornerBlendCurve*>(&c) != nullptr || transition;
   const StretchCut& cut = blend ? kBlendCut : kSpanCut;
   const int parts = cut.parts;
-  // (a blend is cut only where each part takes a few servo periods at the whole's cap: its chord
-  // bounds its length from below)
+  // (a blend at an arc is cut only where each part takes a few servo periods at the whole's cap:
+  // its chord bounds its length from below)
   const auto long_enough = [&] {
     return !transition || (c.point(u1) - c.point(u0)).norm() >=
                          parts * tolerances::plan_blend_part_min_periods * machine.servo_period_s * cap;
