@@ -463,37 +463,26 @@ class ChainPlanner {
   // each phase by the band of its highest speed.
   void append_by_level(const trajectory::PathProfile& c, double t0_s, double s0_mm,
                        std::vector<ProfilePhase>& out) const {
-    const std::size_t first = out.size();
-    c.append_phases_to(t0_s, s0_mm, out);
-    if (levels_.size() < 2) return;
-    std::vector<ProfilePhase> own(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
-    out.resize(first);
+    std::vector<ProfilePhase> own;
+    c.append_phases_to(t0_s, s0_mm, own);
     for (std::size_t k = 0; k < own.size(); ++k) {
       const ProfilePhase& p = own[k];
-      const double dt = (k + 1 < own.size() ? own[k + 1].t0_s : t0_s + c.duration()) - p.t0_s;
-      const Kin x{p.start.s, p.start.v, p.start.a};
       out.push_back(p);
+      const double dt = (k + 1 < own.size() ? own[k + 1].t0_s : t0_s + c.duration()) - p.t0_s;
       if (!(dt > 0.0) || (p.jerk == 0.0 && p.start.a == 0.0)) continue;
       // (the speed is monotone within a phase of a change: its acceleration keeps its sign)
-      const Kin y = advance(x, p.jerk, dt);
-      const double lo = std::min(x.v, y.v), hi = std::max(x.v, y.v);
-      std::vector<double> cuts;
+      const Kin x{p.start.s, p.start.v, p.start.a}, y = advance(x, p.jerk, dt);
+      const bool rising = y.v > x.v;
+      const std::size_t from = out.size();
       for (std::size_t m = 0; m + 1 < levels_.size(); ++m) {
-        if (!(levels_[m] > lo && levels_[m] < hi)) continue;
-        double a = 0.0, b = dt;  // bisection for the time the speed passes the level
-        const bool rising = y.v > x.v;
-        for (int it = 0; it < 200; ++it) {
-          const double mid = 0.5 * (a + b);
-          if (mid <= a || mid >= b) break;
-          ((advance(x, p.jerk, mid).v < levels_[m]) == rising ? a : b) = mid;
-        }
-        cuts.push_back(b);
-      }
-      std::sort(cuts.begin(), cuts.end());
-      for (const double tau : cuts) {
+        const double level = levels_[m];
+        if (!(level > std::min(x.v, y.v) && level < std::max(x.v, y.v))) continue;
+        const double tau = first_time(dt, [&](double t) { return (advance(x, p.jerk, t).v < level) == rising; });
         const Kin z = advance(x, p.jerk, tau);
         out.push_back({p.t0_s + tau, {z.s, z.v, z.a, p.jerk}, p.jerk});
       }
+      std::sort(out.begin() + static_cast<std::ptrdiff_t>(from), out.end(),
+                [](const ProfilePhase& a, const ProfilePhase& b) { return a.t0_s < b.t0_s; });
     }
   }
 
@@ -541,16 +530,23 @@ class ChainPlanner {
     return true;
   }
 
-  // The time [s] within [0, dt] at which a phase of jerk j from x reaches distance s_mm (its
-  // distance does not fall: the speed is not negative), by bisection to the last bit.
-  [[nodiscard]] static double crossing_time(const Kin& x, double j, double dt, double s_mm) {
+  // The first time [s] within [0, dt] at which `before(t)` turns false (it is true before that
+  // time and false after), by bisection to the last bit.
+  template <class Before>
+  [[nodiscard]] static double first_time(double dt, Before before) {
     double lo = 0.0, hi = dt;
     for (int it = 0; it < 200; ++it) {
       const double mid = 0.5 * (lo + hi);
       if (mid <= lo || mid >= hi) break;
-      (advance(x, j, mid).s < s_mm ? lo : hi) = mid;
+      (before(mid) ? lo : hi) = mid;
     }
     return hi;
+  }
+
+  // The time [s] within [0, dt] at which a phase of jerk j from x reaches distance s_mm (its
+  // distance does not fall: the speed is not negative).
+  [[nodiscard]] static double crossing_time(const Kin& x, double j, double dt, double s_mm) {
+    return first_time(dt, [&](double t) { return advance(x, j, t).s < s_mm; });
   }
 
  private:

@@ -36,7 +36,7 @@ struct StretchCut {
 };
 
 constexpr StretchCut kSpanCut{};
-// a corner blend between two lines (tolerances::plan_blend_parts)
+// a corner blend, or a blend at an arc (tolerances::plan_blend_parts)
 constexpr StretchCut kBlendCut{tolerances::plan_blend_parts, tolerances::plan_blend_cap_ratio, 1};
 constexpr int kMaxCutParts = std::max(kSpanCut.parts, kBlendCut.parts);
 
