@@ -159,6 +159,39 @@ TEST(MotionPlanner, ACornerBlendIsCutSoThatTheChainBrakesInsideIt) {
   EXPECT_GT(v_there, 1.005 * whole_cap);  // (uncut, the blend runs at most at whole_cap)
 }
 
+// The slowest parts of a chain (its lows: a cut blend's two middle parts, of the same cap) are
+// passed at their caps, where the path need not speed up or brake: they take the largest
+// centripetal share, not the chain's (plan_chain_centripetal_share_max), up to the caps of the
+// parts beside them (MotionPlanner::raise_chain_lows).
+TEST(MotionPlanner, TheLowsOfAChainTakeTheLargestCentripetalShare) {
+  Machine m = default_machine();
+  testing::set_every_axis(m, 500.0, 1000.0, 1000.0 / m.servo_period_s);
+  const double F = 400.0;  // [mm/s] above every cap on the blend
+  const Vec3 corner(100, 0, 0), t1(1, 0, 0), t2(0, 1, 0);
+  const double d = 10.0;  // [mm] trimmed on each line
+  const auto blend = std::make_shared<CornerBlendCurve>(corner, t1, t2, d);
+  const ArcLengthTable table(*blend);
+  double chain_low = std::numeric_limits<double>::infinity(), largest_low = chain_low;  // [mm/s]
+  for (const MovePiece& p : split_move(*blend, table, F, m)) {
+    chain_low = std::min(chain_low, speed_cap(p.geometry, F, m, tolerances::plan_chain_centripetal_share_max));
+    largest_low = std::min(largest_low, speed_cap(p.geometry, F, m, std::end(tolerances::plan_centripetal_shares)[-1]));
+  }
+  ASSERT_GT(largest_low, 1.03 * chain_low);
+  std::vector<Move> moves{line({0, 0, 0}, corner - d * t1, F), program::move_along(blend, F, false, 1),
+                          line(corner + d * t2, corner + 100.0 * t2, F)};
+  const RunResult r = run(m, moves);
+  const Usage u = usage(r, m);
+  EXPECT_LE(u.v, 1.0 + 1e-6);
+  EXPECT_LE(u.a, 1.0 + 1e-6);
+  EXPECT_LE(u.j, 1.0 + 1e-6);
+  // the slowest setpoint on the blend (where both coordinates have left the lines)
+  double slowest = std::numeric_limits<double>::infinity();  // [mm/s]
+  for (const auto& p : r.points)
+    if (p.position.x() > corner.x() - d && p.position.y() < d) slowest = std::min(slowest, p.v_mm_s);
+  EXPECT_GT(slowest, 1.02 * chain_low);
+  EXPECT_LE(slowest, largest_low * (1.0 + 1e-9));
+}
+
 // The blend of a line into an arc (a TransitionCurve) is cut like a corner blend, so that the chain
 // brakes inside it; but not where its parts would take under plan_blend_part_min_periods servo
 // periods each at its cap (a spiral of tiny arcs, spiral_tight_circular, ran 2 % slower cut).

@@ -527,7 +527,7 @@ PathLimits with_first_axis_fallback(PathLimits l, const Machine& machine) noexce
 
 PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s, const Machine& machine,
                        double junction_jerk_share, double change_weight, bool alone,
-                       double change_from_mm_s) noexcept {
+                       double change_from_mm_s, double chain_share_max) noexcept {
   double best_v = 0.0, best_time = kInf;  // [mm/s], [s]
   std::optional<PathLimits> best;        // its limits, where the estimate needed them
   const bool curved = !g.curvature.isZero();
@@ -535,7 +535,7 @@ PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s
   for (const double share : tolerances::plan_centripetal_shares) {
     if (!curved && share != tolerances::plan_centripetal_shares[0]) break;  // one choice on a line
     // (above the chain's largest share only where the changes at the ends are weighed)
-    if (share > tolerances::plan_chain_centripetal_share_max && !(change_weight > 0.0)) break;
+    if (share > chain_share_max && !(change_weight > 0.0)) break;
     for (const double rate_share : tolerances::plan_curvature_rate_jerk_shares) {
       // the path's own jerk keeps at least plan_path_jerk_share_min of every axis's
       if (rate_share != tolerances::plan_curvature_rate_jerk_shares[0] &&

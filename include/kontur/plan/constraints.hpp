@@ -151,13 +151,15 @@ struct PathGeometry {
 /// unless given: the speed a junction at its ends allows) to the cap loses against running its
 /// distance at the cap (1: a stretch planned alone, speeding up and braking; the motion planner
 /// weighs each end of a piece inside a chain less, tolerances::plan_share_choice_change_weight).
-/// Shares above tolerances::plan_chain_centripetal_share_max only where `change_weight` > 0.
+/// Shares above `chain_share_max` (tolerances::plan_chain_centripetal_share_max unless given: the
+/// motion planner raises a chain's lows with the largest) only where `change_weight` > 0.
 /// `alone`: the stretch runs alone in its chain (both its ends are corners or stops), so the motion
 /// planner plans it with its acceleration_bands; the change is then estimated by them.
 [[nodiscard]] PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s,
                                      const Machine& machine, double junction_jerk_share,
                                      double change_weight = 1.0, bool alone = false,
-                                     double change_from_mm_s = 0.0) noexcept;
+                                     double change_from_mm_s = 0.0,
+                                     double chain_share_max = tolerances::plan_chain_centripetal_share_max) noexcept;
 
 /// The speed bands of a curved stretch whose limits at its cap are `at_cap` (from path_limits or
 /// path_limits_at with the same junction share): in the band up to top_k = f_k cap

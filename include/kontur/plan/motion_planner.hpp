@@ -88,6 +88,11 @@ class MotionPlanner {
     // start anew with it).
     void count(const Piece& p, bool first) noexcept;
   };
+  // Raises the cap of each curved piece at a low of the chain's caps (at most its neighbours';
+  // cap_before / cap_after [mm/s]: the caps of the pieces beside the chain across smooth
+  // junctions, else infinity) and of the pieces around it below that level to the largest
+  // centripetal share, up to the caps beyond them (docs/planner.md, "The lows of a chain").
+  void raise_chain_lows(Chain& chain, double cap_before, double cap_after) const;
   // Adds a piece to the open chain (closing it first if the piece's cap does not fit).
   void add_piece(Piece piece);
   // The chain's profile: the look-ahead plans it as one S-curve at its smallest cap, or under its
@@ -143,6 +148,11 @@ class MotionPlanner {
   std::size_t held_pieces_ = 0;          // their pieces, those of one move counted once
   Chain open_;                           // the chain being built (its last piece's end not yet known)
   std::optional<Derivatives> last_end_;  // end of the last move pushed (for the junction)
+  // [mm/s] the cap of the piece that opens the next chain where a chain closes at a smooth
+  // junction (add_piece), and of the last piece of the chain closed last where it ended smoothly
+  double next_chain_cap_mm_s_ = std::numeric_limits<double>::infinity();
+  double last_chain_end_cap_mm_s_ = std::numeric_limits<double>::infinity();
+  mutable std::vector<double> raise_caps_, raise_to_;  // raise_chain_lows' buffers
   ExtraAxes last_rate_{};                // its extra axes' rates dq/ds (signed)
   bool last_tool_still_ = false;         // only its extra axes moved
   bool last_stationary_end_ = false;     // its curve ends at a stationary point (C' = 0)
