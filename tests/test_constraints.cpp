@@ -286,8 +286,10 @@ TEST(Constraints, AnArcBetweenSmallCurvatureJumpsTakesTheLargestCentripetalShare
 // On a circle of radius R the curvature vector turns at |dK/ds| = 1/R^2, so K'_i v^3 caps the
 // speed where the jerk is small against the acceleration. A piece inside a chain (ends weighed
 // little) may give that term more of the jerk than the first share, as long as the path keeps
-// plan_path_jerk_share_min of it; next to a junction that takes half the jerk it may not. Either
-// way every axis's jerk t_i j + 3 K_i v a + K'_i v^3 stays within its limit at every point.
+// plan_path_jerk_share_min of it, up to the chain's largest (plan_chain_curvature_rate_share_max),
+// and the largest at a low of its chain's caps (at_a_low: the motion passes it at its cap, so the
+// path's own jerk matters little there); next to a junction that takes half the jerk it may not.
+// Either way every axis's jerk t_i j + 3 K_i v a + K'_i v^3 stays within its limit at every point.
 TEST(Constraints, CurvatureChangeTakesALargerShareInsideAChainAndNeverMoreThanTheJerkLeaves) {
   const Machine m = full_machine();  // A = 2000 mm/s^2, J = 50000 mm/s^3 per axis
   const double R = 2.0, A = 2000.0, J = 50000.0;
@@ -298,10 +300,15 @@ TEST(Constraints, CurvatureChangeTakesALargerShareInsideAChainAndNeverMoreThanTh
   ASSERT_LT(largest, std::sqrt(tolerances::plan_centripetal_shares[2] * A * R));  // the rate binds
   const PathLimits inside = path_limits(g, arc.length_mm(), 1e4, m, 0.0, 2 * tolerances::plan_share_choice_change_weight);
   const PathLimits beside = path_limits(g, arc.length_mm(), 1e4, m, tolerances::plan_smooth_junction_jerk_share, 1.0);
+  const PathLimits at_low = path_limits(g, arc.length_mm(), 1e4, m, 0.0, 0.0, false, 0.0, true);
+  const double chain_largest = std::cbrt(tolerances::plan_chain_curvature_rate_share_max * J * R * R);
   EXPECT_GT(inside.max_velocity, first * 1.2);
-  EXPECT_LE(inside.max_velocity, largest * (1 + 1e-12));
+  EXPECT_LE(inside.max_velocity, chain_largest * (1 + 1e-12));
+  EXPECT_GT(at_low.max_velocity, chain_largest * 1.03);
+  EXPECT_LE(at_low.max_velocity, largest * (1 + 1e-12));
   EXPECT_LE(beside.max_velocity, first * (1 + 1e-12));
-  for (const auto& [l, share] : {std::pair{inside, 0.0}, std::pair{beside, tolerances::plan_smooth_junction_jerk_share}}) {
+  for (const auto& [l, share] : {std::pair{inside, 0.0}, std::pair{at_low, 0.0},
+                                 std::pair{beside, tolerances::plan_smooth_junction_jerk_share}}) {
     ASSERT_GT(l.max_jerk, 0.0);
     const double v = l.max_velocity, a = l.max_acceleration, j = l.max_jerk;
     for (int k = 0; k < 720; ++k) {  // axis X at angle theta (Y is the same shifted by 90 degrees)

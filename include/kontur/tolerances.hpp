@@ -214,9 +214,14 @@ inline constexpr double plan_cross_jerk_share = 0.2;
 /// least plan_path_jerk_share_min of the axis's jerk (on the smoothed random_lines the curvature
 /// change caps the speed, not the centripetal term). The first is the share where a junction's
 /// jerk share leaves no room for more, and the one the planner's estimates take
-/// (plan_curvature_rate_jerk_share); the corner blender's estimate of a blend takes the largest
-/// (plan::curve_speed_cap).
-inline constexpr double plan_curvature_rate_jerk_shares[] = {0.2, 0.4, 0.6};
+/// (plan_curvature_rate_jerk_share); the corner blender's estimate of a blend takes the chain's
+/// largest (plan::curve_speed_cap). Above plan_chain_curvature_rate_share_max only where the choice
+/// weighs the speed changes at the piece's ends, or at a low of its chain's caps, which the motion
+/// passes at its cap (MotionPlanner::raise_chain_lows): elsewhere inside a chain the length alone
+/// decides, which would always take the largest and leave the path 0.1 of the jerk (0.7 inside
+/// chains: performance/3D_Chips on XYZ.ini 1.5 % slower, random_lines 2.1 %).
+inline constexpr double plan_curvature_rate_jerk_shares[] = {0.2, 0.4, 0.6, 0.7};
+inline constexpr double plan_chain_curvature_rate_share_max = 0.6;
 inline constexpr double plan_curvature_rate_jerk_share = plan_curvature_rate_jerk_shares[0];
 inline constexpr double plan_path_jerk_share_min = 0.1;
 /// Share of an axis's jerk a junction may use when its direction changes by less than

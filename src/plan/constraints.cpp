@@ -527,7 +527,7 @@ PathLimits with_first_axis_fallback(PathLimits l, const Machine& machine) noexce
 
 PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s, const Machine& machine,
                        double junction_jerk_share, double change_weight, bool alone,
-                       double change_from_mm_s, double chain_share_max) noexcept {
+                       double change_from_mm_s, bool at_a_low) noexcept {
   double best_v = 0.0, best_time = kInf;  // [mm/s], [s]
   std::optional<PathLimits> best;        // its limits, where the estimate needed them
   const bool curved = !g.curvature.isZero();
@@ -535,12 +535,14 @@ PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s
   for (const double share : tolerances::plan_centripetal_shares) {
     if (!curved && share != tolerances::plan_centripetal_shares[0]) break;  // one choice on a line
     // (above the chain's largest share only where the changes at the ends are weighed)
-    if (share > chain_share_max && !(change_weight > 0.0)) break;
+    const bool largest = change_weight > 0.0 || at_a_low;  // (every share may be taken)
+    if (share > tolerances::plan_chain_centripetal_share_max && !largest) break;
     for (const double rate_share : tolerances::plan_curvature_rate_jerk_shares) {
       // the path's own jerk keeps at least plan_path_jerk_share_min of every axis's
       if (rate_share != tolerances::plan_curvature_rate_jerk_shares[0] &&
           (!curved || rate_share > 1.0 - junction_jerk_share - tolerances::plan_cross_jerk_share -
-                                       tolerances::plan_path_jerk_share_min))
+                                       tolerances::plan_path_jerk_share_min ||
+           (rate_share > tolerances::plan_chain_curvature_rate_share_max && !largest)))
         break;
       const double v =
           std::min(speed_cap(g, feed_mm_s, machine, share, rate_share), std::sqrt(0.5 * (1.0 + share)) * pair_speed);
@@ -698,7 +700,7 @@ double curve_speed_cap(const Curve& curve, double feed_mm_s, const Machine& mach
   // (the largest shares inside a chain, where a blend runs: at about one speed, so the path
   // acceleration needs little)
   return speed_cap(g, feed_mm_s, machine, tolerances::plan_chain_centripetal_share_max,
-                   std::end(tolerances::plan_curvature_rate_jerk_shares)[-1]);
+                   tolerances::plan_chain_curvature_rate_share_max);
 }
 
 }  // namespace kontur::plan

@@ -134,7 +134,7 @@ struct PathGeometry {
                                double curvature_rate_share = tolerances::plan_curvature_rate_jerk_share) noexcept;
 
 /// The speed cap [mm/s] of a whole curve at a programmed feed [mm/s] (speed_cap of its geometry
-/// sampled over its parameter range, the largest centripetal and curvature-change shares): what
+/// sampled over its parameter range, a chain's largest centripetal and curvature-change shares): what
 /// the corner blender's estimate of a blend's speed and of its moves' speeds uses
 /// (program::BlendSpeed, wired by the pipeline).
 [[nodiscard]] double curve_speed_cap(const Curve& curve, double feed_mm_s, const Machine& machine);
@@ -151,15 +151,15 @@ struct PathGeometry {
 /// unless given: the speed a junction at its ends allows) to the cap loses against running its
 /// distance at the cap (1: a stretch planned alone, speeding up and braking; the motion planner
 /// weighs each end of a piece inside a chain less, tolerances::plan_share_choice_change_weight).
-/// Shares above `chain_share_max` (tolerances::plan_chain_centripetal_share_max unless given: the
-/// motion planner raises a chain's lows with the largest) only where `change_weight` > 0.
+/// Shares above the chain's largest (tolerances::plan_chain_centripetal_share_max and
+/// plan_chain_curvature_rate_share_max) only where `change_weight` > 0 or `at_a_low` (a low of a
+/// chain's caps, which the motion passes at the cap: MotionPlanner::raise_chain_lows).
 /// `alone`: the stretch runs alone in its chain (both its ends are corners or stops), so the motion
 /// planner plans it with its acceleration_bands; the change is then estimated by them.
 [[nodiscard]] PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s,
                                      const Machine& machine, double junction_jerk_share,
                                      double change_weight = 1.0, bool alone = false,
-                                     double change_from_mm_s = 0.0,
-                                     double chain_share_max = tolerances::plan_chain_centripetal_share_max) noexcept;
+                                     double change_from_mm_s = 0.0, bool at_a_low = false) noexcept;
 
 /// The speed bands of a curved stretch whose limits at its cap are `at_cap` (from path_limits or
 /// path_limits_at with the same junction share): in the band up to top_k = f_k cap
