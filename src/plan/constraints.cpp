@@ -532,18 +532,42 @@ PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s
   std::optional<PathLimits> best;        // its limits, where the estimate needed them
   const bool curved = !g.curvature.isZero();
   const double pair_speed = pair_centripetal_speed(g, machine);  // [mm/s]
+  // The shares the stretch may take (each list rises: those allowed are a prefix of it): on a line
+  // only the first; above the chain's largest only where the changes at the ends are weighed or at
+  // a low; and the path's own jerk keeps at least plan_path_jerk_share_min of every axis's.
+  const bool largest = change_weight > 0.0 || at_a_low;
+  const auto centripetal_allowed = [&](double share) {
+    return share == tolerances::plan_centripetal_shares[0] ||
+           (curved && (share <= tolerances::plan_chain_centripetal_share_max || largest));
+  };
+  const auto rate_allowed = [&](double rate_share) {
+    return rate_share == tolerances::plan_curvature_rate_jerk_shares[0] ||
+           (curved &&
+            rate_share <= 1.0 - junction_jerk_share - tolerances::plan_cross_jerk_share -
+                              tolerances::plan_path_jerk_share_min &&
+            (rate_share <= tolerances::plan_chain_curvature_rate_share_max || largest));
+  };
+  if (!(change_weight > 0.0) && length_mm > 0.0) {
+    // The length alone decides: the largest cap, which the largest shares allowed give (the cap
+    // grows with each share; the search below finds the same, at 16 times the cost: a tenth of a
+    // run of dense lines, whose pieces are all inside chains).
+    double share = tolerances::plan_centripetal_shares[0], rate_share = tolerances::plan_curvature_rate_jerk_shares[0];
+    for (const double c : tolerances::plan_centripetal_shares) {
+      if (!centripetal_allowed(c)) break;
+      share = c;
+    }
+    for (const double r : tolerances::plan_curvature_rate_jerk_shares) {
+      if (!rate_allowed(r)) break;
+      rate_share = r;
+    }
+    const double v =
+        std::min(speed_cap(g, feed_mm_s, machine, share, rate_share), std::sqrt(0.5 * (1.0 + share)) * pair_speed);
+    return path_limits_at(g, v, machine, junction_jerk_share);
+  }
   for (const double share : tolerances::plan_centripetal_shares) {
-    if (!curved && share != tolerances::plan_centripetal_shares[0]) break;  // one choice on a line
-    // (above the chain's largest share only where the changes at the ends are weighed)
-    const bool largest = change_weight > 0.0 || at_a_low;  // (every share may be taken)
-    if (share > tolerances::plan_chain_centripetal_share_max && !largest) break;
+    if (!centripetal_allowed(share)) break;
     for (const double rate_share : tolerances::plan_curvature_rate_jerk_shares) {
-      // the path's own jerk keeps at least plan_path_jerk_share_min of every axis's
-      if (rate_share != tolerances::plan_curvature_rate_jerk_shares[0] &&
-          (!curved || rate_share > 1.0 - junction_jerk_share - tolerances::plan_cross_jerk_share -
-                                       tolerances::plan_path_jerk_share_min ||
-           (rate_share > tolerances::plan_chain_curvature_rate_share_max && !largest)))
-        break;
+      if (!rate_allowed(rate_share)) break;
       const double v =
           std::min(speed_cap(g, feed_mm_s, machine, share, rate_share), std::sqrt(0.5 * (1.0 + share)) * pair_speed);
       // Time estimate: the length at the cap, plus 2 change_weight times the time a change

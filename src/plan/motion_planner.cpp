@@ -446,15 +446,20 @@ void MotionPlanner::raise_chain_lows(Chain& chain, double cap_before, double cap
     return !ps[k].geometry.curvature.isZero() && !(k == 0 && !ps[k].start_smooth) &&
            !(k + 1 == n && !ps[k].planned_end_smooth);
   };
-  const auto top = [&](std::size_t k) {  // its cap at the largest shares [mm/s]
-    const Piece& p = ps[k];
-    return path_limits(p.geometry, p.length_mm, p.feed_mm_s, machine_, p.planned_share, 0.0, false, 0.0, true)
-        .max_velocity;
-  };
   std::vector<double>& caps = raise_caps_;
   std::vector<double>& raised = raise_to_;
+  std::vector<double>& tops = raise_tops_;
   caps.resize(n);
   raised.assign(n, 0.0);
+  tops.assign(n, -1.0);
+  const auto top = [&](std::size_t k) {  // its cap at the largest shares [mm/s], once a piece
+    if (tops[k] < 0.0) {
+      const Piece& p = ps[k];
+      tops[k] = path_limits(p.geometry, p.length_mm, p.feed_mm_s, machine_, p.planned_share, 0.0, false, 0.0, true)
+                    .max_velocity;
+    }
+    return tops[k];
+  };
   for (std::size_t k = 0; k < n; ++k) caps[k] = ps[k].limits.max_velocity;
   const auto cap_at = [&](std::size_t k, bool before) {  // the neighbour's cap, outside the chain too
     if (before) return k > 0 ? caps[k - 1] : cap_before;

@@ -152,7 +152,7 @@ class MotionPlanner {
   // junction (add_piece), and of the last piece of the chain closed last where it ended smoothly
   double next_chain_cap_mm_s_ = std::numeric_limits<double>::infinity();
   double last_chain_end_cap_mm_s_ = std::numeric_limits<double>::infinity();
-  mutable std::vector<double> raise_caps_, raise_to_;  // raise_chain_lows' buffers
+  mutable std::vector<double> raise_caps_, raise_to_, raise_tops_;  // raise_chain_lows' buffers
   ExtraAxes last_rate_{};                // its extra axes' rates dq/ds (signed)
   bool last_tool_still_ = false;         // only its extra axes moved
   bool last_stationary_end_ = false;     // its curve ends at a stationary point (C' = 0)
