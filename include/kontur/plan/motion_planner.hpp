@@ -90,8 +90,10 @@ class MotionPlanner {
   };
   // Raises the cap of each curved piece at a low of the chain's caps (at most its neighbours';
   // cap_before / cap_after [mm/s]: the caps of the pieces beside the chain across smooth
-  // junctions, else infinity) and of the pieces around it below that level to the largest
-  // centripetal share, up to the caps beyond them (docs/planner.md, "The lows of a chain").
+  // junctions, else infinity) and of the pieces around it below that level to their caps at the
+  // largest centripetal and curvature-change shares, up to the caps beyond them; not where that
+  // would lower the smallest jerk of a chain of several pieces (docs/planner.md, "The lows of a
+  // chain").
   void raise_chain_lows(Chain& chain, double cap_before, double cap_after) const;
   // Adds a piece to the open chain (closing it first if the piece's cap does not fit).
   void add_piece(Piece piece);
