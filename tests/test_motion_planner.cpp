@@ -109,21 +109,44 @@ TEST(MotionPlanner, SquareCornersAreTakenWithinTheLimits) {
   EXPECT_EQ(r.points.back().position, Vec3(0, 0, 0));
 }
 
+// A 90 degree corner between two lines blended over 10 mm, at a feed above every cap on the blend,
+// on a machine with jerk = A / T (the centripetal term sets the caps; with less jerk the curvature
+// change at the blend's ends may cap them lower than its apex). run_checked plans line, blend, line
+// and checks every axis's limits on the setpoints.
+struct CornerBlendRun {
+  Machine m = [] {
+    Machine machine = default_machine();
+    testing::set_every_axis(machine, 500.0, 1000.0, 1000.0 / machine.servo_period_s);
+    return machine;
+  }();
+  double F = 400.0;                        // [mm/s]
+  Vec3 corner{100, 0, 0}, t1{1, 0, 0}, t2{0, 1, 0};
+  double d = 10.0;                         // [mm] trimmed on each line
+  std::shared_ptr<CornerBlendCurve> blend = std::make_shared<CornerBlendCurve>(corner, t1, t2, d);
+  [[nodiscard]] RunResult run_checked() const {
+    const std::vector<Move> moves{line({0, 0, 0}, corner - d * t1, F), program::move_along(blend, F, false, 1),
+                                  line(corner + d * t2, corner + 100.0 * t2, F)};
+    RunResult r = run(m, moves);
+    const Usage u = usage(r, m);
+    EXPECT_LE(u.v, 1.0 + 1e-6);
+    EXPECT_LE(u.a, 1.0 + 1e-6);
+    EXPECT_LE(u.j, 1.0 + 1e-6);
+    return r;
+  }
+};
+
 // A corner blend turns from zero curvature at its ends to its peak inside (docs/planner.md,
 // "Corner blending"): split_move cuts it (tolerances::plan_blend_parts) so that its ends, which
 // allow far more than its apex, get caps of their own, and the planner brakes inside the blend
 // instead of before it (naive_cam_corner1: 3.287 -> 3.200 s on the jerk = A / T machine).
 TEST(MotionPlanner, ACornerBlendIsCutSoThatTheChainBrakesInsideIt) {
-  // (jerk = A / T: the centripetal term sets the caps; with less jerk the curvature change at the
-  // blend's ends may cap them lower than its apex, which the cut follows as well)
-  Machine m = default_machine();
-  testing::set_every_axis(m, 500.0, 1000.0, 1000.0 / m.servo_period_s);
-  const double F = 400.0;  // [mm/s] above every cap on the blend
-  const Vec3 corner(100, 0, 0), t1(1, 0, 0), t2(0, 1, 0);
-  const double d = 10.0;  // [mm] trimmed on each line
-  const auto blend = std::make_shared<CornerBlendCurve>(corner, t1, t2, d);
-  const ArcLengthTable table(*blend);
-  const std::vector<MovePiece> pieces = split_move(*blend, table, F, m);
+  const CornerBlendRun c;
+  const Machine& m = c.m;
+  const double F = c.F, d = c.d;
+  const Vec3 corner = c.corner, t1 = c.t1;
+  const CornerBlendCurve& blend = *c.blend;
+  const ArcLengthTable table(blend);
+  const std::vector<MovePiece> pieces = split_move(blend, table, F, m);
   ASSERT_GE(pieces.size(), 3u);
   double lowest = std::numeric_limits<double>::infinity();
   std::vector<double> caps;
@@ -141,15 +164,9 @@ TEST(MotionPlanner, ACornerBlendIsCutSoThatTheChainBrakesInsideIt) {
 
   // Through the planner (line, blend, line): within the limits, and at the blend's start faster
   // than the whole blend could run at the largest centripetal share.
-  std::vector<Move> moves{line({0, 0, 0}, corner - d * t1, F), program::move_along(blend, F, false, 1),
-                          line(corner + d * t2, corner + 100.0 * t2, F)};
-  const RunResult r = run(m, moves);
-  const Usage u = usage(r, m);
-  EXPECT_LE(u.v, 1.0 + 1e-6);
-  EXPECT_LE(u.a, 1.0 + 1e-6);
-  EXPECT_LE(u.j, 1.0 + 1e-6);
+  const RunResult r = c.run_checked();
   const double whole_cap =
-      speed_cap(path_geometry(*blend, 0.0, 1.0), F, m, std::end(tolerances::plan_centripetal_shares)[-1]);
+      speed_cap(path_geometry(blend, 0.0, 1.0), F, m, std::end(tolerances::plan_centripetal_shares)[-1]);
   double best = 1e9, v_there = 0.0;
   for (const auto& p : r.points)
     if ((p.position - (corner - d * t1)).norm() < best) {
@@ -164,30 +181,21 @@ TEST(MotionPlanner, ACornerBlendIsCutSoThatTheChainBrakesInsideIt) {
 // centripetal share, not the chain's (plan_chain_centripetal_share_max), up to the caps of the
 // parts beside them (MotionPlanner::raise_chain_lows).
 TEST(MotionPlanner, TheLowsOfAChainTakeTheLargestCentripetalShare) {
-  Machine m = default_machine();
-  testing::set_every_axis(m, 500.0, 1000.0, 1000.0 / m.servo_period_s);
-  const double F = 400.0;  // [mm/s] above every cap on the blend
-  const Vec3 corner(100, 0, 0), t1(1, 0, 0), t2(0, 1, 0);
-  const double d = 10.0;  // [mm] trimmed on each line
-  const auto blend = std::make_shared<CornerBlendCurve>(corner, t1, t2, d);
-  const ArcLengthTable table(*blend);
+  const CornerBlendRun c;
+  const Machine& m = c.m;
+  const double F = c.F;
+  const ArcLengthTable table(*c.blend);
   double chain_low = std::numeric_limits<double>::infinity(), largest_low = chain_low;  // [mm/s]
-  for (const MovePiece& p : split_move(*blend, table, F, m)) {
+  for (const MovePiece& p : split_move(*c.blend, table, F, m)) {
     chain_low = std::min(chain_low, speed_cap(p.geometry, F, m, tolerances::plan_chain_centripetal_share_max));
     largest_low = std::min(largest_low, speed_cap(p.geometry, F, m, std::end(tolerances::plan_centripetal_shares)[-1]));
   }
   ASSERT_GT(largest_low, 1.03 * chain_low);
-  std::vector<Move> moves{line({0, 0, 0}, corner - d * t1, F), program::move_along(blend, F, false, 1),
-                          line(corner + d * t2, corner + 100.0 * t2, F)};
-  const RunResult r = run(m, moves);
-  const Usage u = usage(r, m);
-  EXPECT_LE(u.v, 1.0 + 1e-6);
-  EXPECT_LE(u.a, 1.0 + 1e-6);
-  EXPECT_LE(u.j, 1.0 + 1e-6);
+  const RunResult r = c.run_checked();
   // the slowest setpoint on the blend (where both coordinates have left the lines)
   double slowest = std::numeric_limits<double>::infinity();  // [mm/s]
   for (const auto& p : r.points)
-    if (p.position.x() > corner.x() - d && p.position.y() < d) slowest = std::min(slowest, p.v_mm_s);
+    if (p.position.x() > c.corner.x() - c.d && p.position.y() < c.d) slowest = std::min(slowest, p.v_mm_s);
   EXPECT_GT(slowest, 1.02 * chain_low);
   EXPECT_LE(slowest, largest_low * (1.0 + 1e-9));
 }
