@@ -528,8 +528,6 @@ PathLimits with_first_axis_fallback(PathLimits l, const Machine& machine) noexce
 PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s, const Machine& machine,
                        double junction_jerk_share, double change_weight, bool alone,
                        double change_from_mm_s, bool at_a_low) noexcept {
-  double best_v = 0.0, best_time = kInf;  // [mm/s], [s]
-  std::optional<PathLimits> best;        // its limits, where the estimate needed them
   const bool curved = !g.curvature.isZero();
   const double pair_speed = pair_centripetal_speed(g, machine);  // [mm/s]
   // The shares the stretch may take (each list rises: those allowed are a prefix of it): on a line
@@ -547,10 +545,14 @@ PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s
                               tolerances::plan_path_jerk_share_min &&
             (rate_share <= tolerances::plan_chain_curvature_rate_share_max || largest));
   };
-  if (!(change_weight > 0.0) && length_mm > 0.0) {
-    // The length alone decides: the largest cap, which the largest shares allowed give (the cap
-    // grows with each share; the search below finds the same, at 16 times the cost: a tenth of a
-    // run of dense lines, whose pieces are all inside chains).
+  // (the cap at a pair of shares [mm/s]: the pairs' bound is sqrt((1 + c) / 2) of their speed)
+  const auto cap_at = [&](double share, double rate_share) {
+    return std::min(speed_cap(g, feed_mm_s, machine, share, rate_share), std::sqrt(0.5 * (1.0 + share)) * pair_speed);
+  };
+  if (!(change_weight > 0.0)) {
+    // The length alone decides (no change weighed: inside a chain): the largest cap, which the
+    // largest shares allowed give, as the cap grows with each share (a search of the 16 pairs was
+    // a tenth of a run of dense lines, whose pieces are all inside chains).
     double share = tolerances::plan_centripetal_shares[0], rate_share = tolerances::plan_curvature_rate_jerk_shares[0];
     for (const double c : tolerances::plan_centripetal_shares) {
       if (!centripetal_allowed(c)) break;
@@ -560,26 +562,24 @@ PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s
       if (!rate_allowed(r)) break;
       rate_share = r;
     }
-    const double v =
-        std::min(speed_cap(g, feed_mm_s, machine, share, rate_share), std::sqrt(0.5 * (1.0 + share)) * pair_speed);
-    return path_limits_at(g, v, machine, junction_jerk_share);
+    return path_limits_at(g, cap_at(share, rate_share), machine, junction_jerk_share);
   }
+  double best_v = 0.0, best_time = kInf;  // [mm/s], [s]
+  std::optional<PathLimits> best;        // its limits, where the estimate needed them
   for (const double share : tolerances::plan_centripetal_shares) {
     if (!centripetal_allowed(share)) break;
     for (const double rate_share : tolerances::plan_curvature_rate_jerk_shares) {
       if (!rate_allowed(rate_share)) break;
-      const double v =
-          std::min(speed_cap(g, feed_mm_s, machine, share, rate_share), std::sqrt(0.5 * (1.0 + share)) * pair_speed);
+      const double v = cap_at(share, rate_share);
       // Time estimate: the length at the cap, plus 2 change_weight times the time a change
       // between the junctions' speed and the cap loses against running its distance at the cap
       // (jerk-limited: half its duration from rest, (v - from) / 2v of it from `from`; by speed
       // bands where the piece runs alone in its chain, as the motion planner then plans it:
       // plan/banded_profile.hpp, where the last band's small acceleration near a high cap costs
-      // far less than its duration). The limits at the cap only where the change counts (inside a
-      // chain the length alone decides).
+      // far less than its duration).
       double time = v > 0.0 ? length_mm / v : kInf;
       std::optional<PathLimits> l;
-      if (change_weight > 0.0 && v > 0.0) {
+      if (v > 0.0) {
         l = limits_at_cap(g, v, machine, junction_jerk_share);
         const double from = std::clamp(change_from_mm_s, 0.0, v);  // [mm/s]
         double lost = std::isfinite(l->max_acceleration) && l->max_acceleration > 0.0

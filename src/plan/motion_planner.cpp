@@ -428,16 +428,14 @@ void MotionPlanner::add_piece(Piece piece) {
                                                           tolerances::plan_chain_close_change_share * change_s);
     // Pieces of different speeds each keep their own cap; a chain is bounded in length.
     if (costly || hi > tolerances::plan_piece_cap_ratio * lo || a_hi > tolerances::plan_chain_limit_ratio * a_lo ||
-        open_.pieces.size() >= tolerances::plan_chain_max_pieces) {
-      next_chain_cap_mm_s_ = piece.limits.max_velocity;
-      close_chain(std::numeric_limits<double>::infinity());
-    }
+        open_.pieces.size() >= tolerances::plan_chain_max_pieces)
+      close_chain(std::numeric_limits<double>::infinity(), piece.limits.max_velocity);
   }
   open_.count(piece, open_.pieces.empty());
   open_.pieces.push_back(std::move(piece));
 }
 
-void MotionPlanner::raise_chain_lows(Chain& chain, double cap_before, double cap_after) const {
+void MotionPlanner::raise_chain_lows(Chain& chain, double cap_before, double cap_after) {
   std::vector<Piece>& ps = chain.pieces;
   const std::size_t n = ps.size();
   // (a curved piece whose share was chosen by its length alone: not an end at a corner or a stop,
@@ -446,10 +444,10 @@ void MotionPlanner::raise_chain_lows(Chain& chain, double cap_before, double cap
     return !ps[k].geometry.curvature.isZero() && !(k == 0 && !ps[k].start_smooth) &&
            !(k + 1 == n && !ps[k].planned_end_smooth);
   };
-  std::vector<double>& caps = raise_caps_;
+  // (the caps as the chain was built: the raised limits are set only after the last is found)
+  const auto cap = [&](std::size_t k) { return ps[k].limits.max_velocity; };
   std::vector<double>& raised = raise_to_;
   std::vector<double>& tops = raise_tops_;
-  caps.resize(n);
   raised.assign(n, 0.0);
   tops.assign(n, -1.0);
   const auto top = [&](std::size_t k) {  // its cap at the largest shares [mm/s], once a piece
@@ -460,20 +458,19 @@ void MotionPlanner::raise_chain_lows(Chain& chain, double cap_before, double cap
     }
     return tops[k];
   };
-  for (std::size_t k = 0; k < n; ++k) caps[k] = ps[k].limits.max_velocity;
   const auto cap_at = [&](std::size_t k, bool before) {  // the neighbour's cap, outside the chain too
-    if (before) return k > 0 ? caps[k - 1] : cap_before;
-    return k + 1 < n ? caps[k + 1] : cap_after;
+    if (before) return k > 0 ? cap(k - 1) : cap_before;
+    return k + 1 < n ? cap(k + 1) : cap_after;
   };
   for (std::size_t k = 0; k < n; ++k) {
-    if (!raisable(k) || !(caps[k] <= cap_at(k, true) && caps[k] <= cap_at(k, false))) continue;
+    if (!raisable(k) || !(cap(k) <= cap_at(k, true) && cap(k) <= cap_at(k, false))) continue;
     // The motion passes this low at its cap, and the pieces around it below the low's raised cap
     // at theirs: all of them rise to that level (the two middle parts of a symmetric blend have
     // the same cap), within each one's own and below the pieces beyond them.
     double level = top(k);
     std::size_t i = k, j = k;
-    while (i > 0 && caps[i - 1] < level && raisable(i - 1)) --i;
-    while (j + 1 < n && caps[j + 1] < level && raisable(j + 1)) ++j;
+    while (i > 0 && cap(i - 1) < level && raisable(i - 1)) --i;
+    while (j + 1 < n && cap(j + 1) < level && raisable(j + 1)) ++j;
     level = std::min({level, cap_at(i, true), cap_at(j, false)});
     for (std::size_t q = i; q <= j; ++q) raised[q] = std::max(raised[q], q == k ? level : std::min(level, top(q)));
   }
@@ -483,7 +480,7 @@ void MotionPlanner::raise_chain_lows(Chain& chain, double cap_before, double cap
   for (const Piece& p : ps) j_least = std::min(j_least, p.limits.max_jerk);
   bool any = false;
   for (std::size_t k = 0; k < n; ++k) {
-    if (!(raised[k] > caps[k])) continue;
+    if (!(raised[k] > cap(k))) continue;
     const PathLimits l = path_limits_at(ps[k].geometry, raised[k], machine_, ps[k].planned_share);
     if (n > 1 && l.max_jerk < j_least) continue;
     ps[k].limits = l;
@@ -620,13 +617,12 @@ void MotionPlanner::settle_last(double end_share, bool end_smooth, double end_ve
   add_piece(std::move(moved));
 }
 
-void MotionPlanner::close_chain(double end_velocity) {
+void MotionPlanner::close_chain(double end_velocity, double next_cap_mm_s) {
   if (open_.pieces.empty()) return;
   const double inf = std::numeric_limits<double>::infinity();
   raise_chain_lows(open_, open_.pieces.front().start_smooth ? last_chain_end_cap_mm_s_ : inf,
-                   std::isinf(end_velocity) ? next_chain_cap_mm_s_ : inf);
+                   std::isinf(end_velocity) ? next_cap_mm_s : inf);
   last_chain_end_cap_mm_s_ = std::isinf(end_velocity) ? open_.pieces.back().limits.max_velocity : inf;
-  next_chain_cap_mm_s_ = inf;
   MoveConstraint mc;
   mc.limits = open_.pieces.front().limits;
   mc.limits.max_velocity = open_.min_cap_mm_s;

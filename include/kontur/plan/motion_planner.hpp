@@ -94,7 +94,7 @@ class MotionPlanner {
   // largest centripetal and curvature-change shares, up to the caps beyond them; not where that
   // would lower the smallest jerk of a chain of several pieces (docs/planner.md, "The lows of a
   // chain").
-  void raise_chain_lows(Chain& chain, double cap_before, double cap_after) const;
+  void raise_chain_lows(Chain& chain, double cap_before, double cap_after);
   // Adds a piece to the open chain (closing it first if the piece's cap does not fit).
   void add_piece(Piece piece);
   // The chain's profile: the look-ahead plans it as one S-curve at its smallest cap, or under its
@@ -116,8 +116,10 @@ class MotionPlanner {
   void settle_last(double end_share, bool end_smooth, double end_velocity);
   // The limits of a piece whose ends have these junction shares and are or are not inside a chain.
   [[nodiscard]] PathLimits piece_limits(const Piece& piece, double share, bool end_smooth, double end_velocity) const;
-  // Closes the open chain (its end speed at most `end_velocity`) and hands it to the look-ahead.
-  void close_chain(double end_velocity);
+  // Closes the open chain (its end speed at most `end_velocity`) and hands it to the look-ahead;
+  // `next_cap_mm_s` [mm/s]: the cap of the piece that opens the next chain across a smooth junction
+  // (infinity where not known or not smooth).
+  void close_chain(double end_velocity, double next_cap_mm_s = std::numeric_limits<double>::infinity());
   // Hands the chains whose profiles are final to the trajectory, holding those that join the next
   // smoothly until that one's is final too.
   void release_ready();
@@ -150,11 +152,9 @@ class MotionPlanner {
   std::size_t held_pieces_ = 0;          // their pieces, those of one move counted once
   Chain open_;                           // the chain being built (its last piece's end not yet known)
   std::optional<Derivatives> last_end_;  // end of the last move pushed (for the junction)
-  // [mm/s] the cap of the piece that opens the next chain where a chain closes at a smooth
-  // junction (add_piece), and of the last piece of the chain closed last where it ended smoothly
-  double next_chain_cap_mm_s_ = std::numeric_limits<double>::infinity();
+  // [mm/s] the cap of the last piece of the chain closed last where it ended smoothly, else infinity
   double last_chain_end_cap_mm_s_ = std::numeric_limits<double>::infinity();
-  mutable std::vector<double> raise_caps_, raise_to_, raise_tops_;  // raise_chain_lows' buffers
+  std::vector<double> raise_to_, raise_tops_;  // raise_chain_lows' buffers (kept between chains)
   ExtraAxes last_rate_{};                // its extra axes' rates dq/ds (signed)
   bool last_tool_still_ = false;         // only its extra axes moved
   bool last_stationary_end_ = false;     // its curve ends at a stationary point (C' = 0)
