@@ -99,6 +99,34 @@ TEST(BandedProfile, OneBandIsTheScurve) {
   EXPECT_NEAR(banded_change_time(0.0, 80.0, b), velocity_change_time(0.0, 80.0, 600.0, 20000.0), 1e-12);
 }
 
+// The time a change loses within a stretch: where the change fits, its duration less its distance
+// over the cap, whatever the stretch's length beyond; where it does not, the time to run the
+// stretch's length speeding up (the change to the speed reached there covers exactly that length)
+// less that length over the cap: positive, and less than the whole change's duration.
+TEST(BandedProfile, TheTimeAChangeLosesCountsOnlyTheDistanceItHas) {
+  std::mt19937_64 rng(20261205);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const AccelerationBands b = random_bands(rng);
+    const double cap = b.top_mm_s[static_cast<std::size_t>(b.n - 1)];
+    const double from = 0.5 * cap * u(rng);
+    const double whole = banded_change_distance(from, cap, b);  // [mm]
+    const double lost = banded_change_time_lost(from, cap, b);  // [s]
+    ASSERT_TRUE(std::isfinite(whole) && std::isfinite(lost)) << trial;
+    EXPECT_EQ(banded_change_time_lost(from, cap, b, whole * (1.0 + u(rng))), lost) << trial;
+    for (const double share : {0.9, 0.5, 0.1}) {
+      const double within = share * whole;  // [mm]
+      const double reached = banded_reachable_velocity(from, within, b);
+      ASSERT_LT(reached, cap) << trial;
+      EXPECT_NEAR(banded_change_distance(from, reached, b), within, 1e-6 * whole) << trial;
+      const double short_lost = banded_change_time_lost(from, cap, b, within);
+      EXPECT_NEAR(short_lost, banded_change_time(from, reached, b) - within / cap, 1e-12 * (1.0 + short_lost)) << trial;
+      EXPECT_GT(short_lost, 0.0) << trial;
+      EXPECT_LT(short_lost, banded_change_time(from, cap, b)) << trial;
+    }
+  }
+}
+
 TEST(BandedProfile, RefusesWhatItCannotPlan) {
   AccelerationBands b;
   EXPECT_FALSE(plan_banded_profile(10.0, 0.0, 0.0, b));  // no bands

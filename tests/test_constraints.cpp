@@ -283,6 +283,25 @@ TEST(Constraints, AnArcBetweenSmallCurvatureJumpsTakesTheLargestCentripetalShare
   EXPECT_EQ(inside.max_velocity, speed_cap(g, 1270.0, m, tolerances::plan_chain_centripetal_share_max));
 }
 
+// An arc that starts its chain at a corner and runs on into the next piece smoothly (half of
+// arc-terminal: a quarter inch circle from a line's corner to a curvature jump) speeds up under its
+// speed bands, as the look-ahead and the chain profile plan it, so its share is chosen by them as
+// for an arc alone: the largest, not the third, which the cap's acceleration (0.24 A at 0.97)
+// would have chosen. Until 2026-12-05 only an arc alone was estimated by its bands: arc-terminal
+// at 1.1005 of the reference on the jerk = A / T machine, 1.0931 with its bands.
+TEST(Constraints, AnArcAtTheStartOfAChainIsEstimatedByItsSpeedBands) {
+  Machine m = full_machine();
+  testing::set_every_axis(m, 203.2, 762.0, 762000.0);
+  const double R = 2.54;  // [mm]
+  const HelixArc arc(CircleFrame{}, R, std::numbers::pi);
+  const PathGeometry g = path_geometry(arc, arc.u_min(), arc.u_max());
+  const double feed = 423.33;  // [mm/s]
+  const PathLimits alone = path_limits(g, arc.length_mm(), feed, m, 0.0, 1.0, true, 0.0);
+  const PathLimits chain_start = path_limits(g, arc.length_mm(), feed, m, 0.0, 0.5, false, 5.0);
+  EXPECT_GT(chain_start.max_velocity, speed_cap(g, feed, m, tolerances::plan_chain_centripetal_share_max) * 1.01);
+  EXPECT_GE(chain_start.max_velocity, alone.max_velocity);
+}
+
 // On a circle of radius R the curvature vector turns at |dK/ds| = 1/R^2, so K'_i v^3 caps the
 // speed where the jerk is small against the acceleration. A piece inside a chain (ends weighed
 // little) may give that term more of the jerk than the first share, as long as the path keeps

@@ -145,11 +145,15 @@ double banded_change_distance(double va, double vb, const AccelerationBands& ban
   return c ? c->distance_mm : kInf;
 }
 
-double banded_change_time_lost(double va, double vb, const AccelerationBands& bands) {
-  const std::optional<Change> c = change_within(va, vb, bands);
+double banded_change_time_lost(double va, double vb, const AccelerationBands& bands, double within_mm) {
+  std::optional<Change> c = change_within(va, vb, bands);
   if (!c) return kInf;
   const double top = std::min(vb, bands.top_mm_s[static_cast<std::size_t>(bands.n - 1)]);
-  return top > 0.0 ? std::max(0.0, c->duration_s - c->distance_mm / top) : c->duration_s;
+  if (!(top > 0.0)) return c->duration_s;
+  if (c->distance_mm <= within_mm) return std::max(0.0, c->duration_s - c->distance_mm / top);
+  // The change does not fit: it runs the whole distance, up to the speed it reaches there.
+  c = change_within(va, banded_reachable_velocity(va, within_mm, bands), bands);
+  return c ? std::max(0.0, c->duration_s - within_mm / top) : kInf;
 }
 
 double banded_reachable_velocity(double v_from, double distance, const AccelerationBands& bands) {

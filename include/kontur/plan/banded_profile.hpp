@@ -20,6 +20,7 @@
 #include <kontur/trajectory/path_profile.hpp>
 
 #include <array>
+#include <limits>
 #include <optional>
 
 namespace kontur::plan {
@@ -48,8 +49,11 @@ struct AccelerationBands {
 
 /// The time [s] that change loses against covering its distance at vb: its duration less its
 /// distance over vb (infinity where the bands are invalid). A profile that speeds up from va to a
-/// cap vb and brakes back takes about length / vb plus this for each of the two changes.
-[[nodiscard]] double banded_change_time_lost(double va, double vb, const AccelerationBands& bands);
+/// cap vb and brakes back takes about length / vb plus this for each of the two changes. Where the
+/// change needs more than `within_mm` [mm] (the share of a stretch it has), it speeds up over the
+/// whole of it without reaching vb: the time that takes less within_mm over vb.
+[[nodiscard]] double banded_change_time_lost(double va, double vb, const AccelerationBands& bands,
+                                             double within_mm = std::numeric_limits<double>::infinity());
 
 /// The largest speed [mm/s] (at most the last top) reachable from v_from within `distance` [mm] by
 /// speeding up under the bands; by symmetry the largest from which braking to v_from fits. v_from

@@ -154,8 +154,11 @@ struct PathGeometry {
 /// Shares above the chain's largest (tolerances::plan_chain_centripetal_share_max and
 /// plan_chain_curvature_rate_share_max) only where `change_weight` > 0 or `at_a_low` (a low of a
 /// chain's caps, which the motion passes at the cap: MotionPlanner::raise_chain_lows).
-/// `alone`: the stretch runs alone in its chain (both its ends are corners or stops), so the motion
-/// planner plans it with its acceleration_bands; the change is then estimated by them.
+/// A curved stretch's change is estimated by its acceleration_bands (as the look-ahead and the chain
+/// profile speed it up below its cap) where `alone` (it runs alone in its chain: both its ends are
+/// corners or stops, planned by its bands) or at the smallest curvature-change share (larger ones
+/// trade jerk, which the bands do not cover); a banded change longer than the stretch (half of it
+/// where change_weight >= 1) is counted over the stretch, up to the speed it reaches there.
 [[nodiscard]] PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s,
                                      const Machine& machine, double junction_jerk_share,
                                      double change_weight = 1.0, bool alone = false,
