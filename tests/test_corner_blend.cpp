@@ -10,6 +10,7 @@
 #include <kontur/geometry/golden_section.hpp>
 #include <kontur/geometry/helix_arc.hpp>
 #include <kontur/geometry/line_segment.hpp>
+#include <kontur/geometry/piece_distance.hpp>
 #include <kontur/geometry/transition_curve.hpp>
 #include <kontur/machine.hpp>
 #include <kontur/plan/constraints.hpp>
@@ -673,6 +674,51 @@ TEST(HelixArcDistance, EqualsTheNearestOfDenseSamplesOnCirclesHelicesAndSpirals)
           << "arc " << i << " point " << k;
     }
   }
+}
+
+// The cheap lower bound of an arc's distance (the ring that holds the part's points) is never above
+// the nearest point's distance, and equals it on a circle where p's angle lies within the part; so
+// nearer_distance, which leaves out the farther piece where its bound rules it out, returns exactly
+// std::min of both distances: for a line and an arc, two arcs (circles, helices, spirals), and an
+// arc and another curve (no bound), points near either piece and between them.
+TEST(HelixArcDistance, TheLowerBoundHoldsAndTheNearerOfTwoPiecesIsExactlyTheSmallerDistance) {
+  std::mt19937_64 rng(20261205);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int left_out = 0;
+  for (int i = 0; i < 60; ++i) {
+    const CircleFrame f = random_circle_frame(rng);
+    const double r = 0.5 + 20.0 * unit(rng);
+    const int kind = i % 3;
+    const auto arc = std::make_shared<const HelixArc>(
+        f, r, 0.2 + 6.0 * unit(rng), kind == 1 ? 10.0 * (unit(rng) - 0.5) : 0.0,
+        kind == 2 ? 0.2 * r * (unit(rng) - 0.5) : 0.0);
+    const double u0 = 0.5 * unit(rng), u1 = u0 + (1.0 - u0) * (0.05 + 0.95 * unit(rng));
+    const CurvePiece part(arc, u0, u1);
+    const Vec3 end = arc->point(u1), tangent = arc->derivatives(u1, 1)[1].normalized();
+    const LineSegment line(end, end + (0.5 + 5.0 * unit(rng)) * (tangent + 0.5 * random_unit(rng)).normalized());
+    const auto other_arc = std::make_shared<const HelixArc>(random_circle_frame(rng), 0.5 + 10.0 * unit(rng),
+                                                            0.2 + 3.0 * unit(rng), kind == 0 ? 0.0 : 2.0 * unit(rng));
+    const CornerBlendCurve generic(end, tangent, random_unit(rng), 1.0 + unit(rng), corner_blend_shape(0.5));
+    const PieceDistance to_part(part), to_line(line), to_other(*other_arc), to_generic(generic);
+    for (int k = 0; k < 40; ++k) {
+      const double u = u0 + (u1 - u0) * (1.4 * unit(rng) - 0.2);
+      const Vec3 p = arc->point(std::clamp(u, 0.0, 1.0)) + 2.0 * unit(rng) * random_unit(rng);
+      const double d = to_part(p), bound = to_part.lower_bound(p);
+      EXPECT_LE(bound, nearest_by_sampling(*arc, p, u0, u1) + 1e-9) << "arc " << i << " point " << k;
+      if (kind == 0) {
+        const Vec3 q = p - f.centre;
+        const double angle = std::atan2(q.dot(f.e2), q.dot(f.e1)), a0 = arc->sweep_rad() * u0, a1 = arc->sweep_rad() * u1;
+        if (angle >= a0 && angle <= a1) EXPECT_NEAR(bound, d, 1e-12 * (1.0 + r)) << "arc " << i << " point " << k;
+      }
+      for (const PieceDistance* other : {&to_line, &to_other, &to_generic}) {
+        const double exact = std::min(d, (*other)(p));
+        EXPECT_EQ(nearer_distance(to_part, *other, p), exact) << "arc " << i << " point " << k;
+        EXPECT_EQ(nearer_distance(*other, to_part, p), exact) << "arc " << i << " point " << k;
+        if (std::max(bound, other->lower_bound(p)) > exact * (1.0 + 1e-6) + 1e-6) ++left_out;
+      }
+    }
+  }
+  EXPECT_GT(left_out, 500);  // (the bound does leave distances out)
 }
 
 // On a helix of several turns (thread milling) and a spiral with rise, the nearest point may lie on

@@ -299,6 +299,10 @@ inline constexpr double arc_slight_spiral_slope = 0.03;
 /// Newton's (or bisection) steps toward the nearest point of a spiral's or a helix's turn
 /// (HelixArc::distance_mm; a step of 1e-13 mm ends them sooner).
 inline constexpr int arc_distance_iterations = 60;
+/// nearer_distance (geometry/piece_distance.hpp) leaves the farther piece's distance out only where
+/// its lower bound exceeds the nearer's distance by more than this share of (1 mm + |p| + the
+/// bound): far beyond the rounding of either, so the result is exactly the smaller distance.
+inline constexpr double piece_distance_bound_margin = 1e-9;
 /// Parts of a spiral's whole turn searched for the nearest point each (HelixArc::distance_mm).
 inline constexpr int arc_distance_spiral_parts = 8;
 /// How many (|t_i|, |K_i|) pairs per axis a stretch keeps to bound its acceleration

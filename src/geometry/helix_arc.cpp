@@ -149,6 +149,21 @@ double HelixArc::distance_mm(const Vec3& p, double u0, double u1) const noexcept
   return best_mm;
 }
 
+double HelixArc::distance_lower_bound_mm(const Vec3& p, double u0, double u1) const noexcept {
+  u0 = std::clamp(u0, 0.0, 1.0);
+  u1 = std::clamp(u1, u0, 1.0);
+  const Vec3 q = p - frame_.centre;
+  const double x = q.dot(frame_.e1), y = q.dot(frame_.e2), z = q.dot(frame_.normal);
+  const double rho = std::sqrt(x * x + y * y);  // [mm] p's distance from the axis
+  // (a point of the part at radius r and height h lies at least |rho - r| across the axis and
+  // |z - h| along it from p; r and h change linearly with u)
+  const double r0 = radius_ + radius_change_ * u0, r1 = radius_ + radius_change_ * u1;
+  const double h0 = rise_ * u0, h1 = rise_ * u1;
+  const double across = std::max({0.0, std::min(r0, r1) - rho, rho - std::max(r0, r1)});
+  const double along = std::max({0.0, std::min(h0, h1) - z, z - std::max(h0, h1)});
+  return std::sqrt(across * across + along * along);
+}
+
 ArcSpan arc_span(const Curve& curve) noexcept {
   if (const auto* arc = dynamic_cast<const HelixArc*>(&curve)) return {arc, 0.0, 1.0};
   // A piece of a piece (an arc blended at both ends: the blender trims the trimmed arc again) has

@@ -4,6 +4,7 @@
 #include <kontur/geometry/golden_section.hpp>
 #include <kontur/geometry/line_segment.hpp>
 #include <kontur/geometry/piece_distance.hpp>
+#include <kontur/tolerances.hpp>
 #include <limits>
 
 namespace kontur {
@@ -33,6 +34,25 @@ double PieceDistance::operator()(const Vec3& p) const {
   }
   const double lo = u_[best_k > 0 ? best_k - 1 : 0], hi = u_[std::min(best_k + 1, u_.size() - 1)];
   return std::min(best, golden_section_minimum([&](double u) { return (piece_.point(u) - p).norm(); }, lo, hi, 80).second);
+}
+
+double PieceDistance::lower_bound(const Vec3& p) const {
+  if (line_ != nullptr) return segment_distance(p, line_->start(), line_->end());
+  if (arc_.arc != nullptr) return arc_.arc->distance_lower_bound_mm(p, arc_.u0, arc_.u1);
+  return 0.0;
+}
+
+double nearer_distance(const PieceDistance& a, const PieceDistance& b, const Vec3& p) {
+  const double bound_a = a.lower_bound(p), bound_b = b.lower_bound(p);  // [mm]
+  // (the piece of the smaller bound first; the other only where its bound does not rule it out)
+  const bool a_first = bound_a <= bound_b;
+  const PieceDistance& first = a_first ? a : b;
+  const PieceDistance& second = a_first ? b : a;
+  const double second_bound = a_first ? bound_b : bound_a;
+  const double d = first(p);
+  const double margin = tolerances::piece_distance_bound_margin * (1.0 + p.norm() + second_bound);  // [mm]
+  if (d < second_bound - margin) return d;
+  return std::min(d, second(p));
 }
 
 }  // namespace kontur

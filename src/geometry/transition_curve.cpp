@@ -56,8 +56,7 @@ double curves_deviation(const Curve& curve, const Curve& a, const Curve& b, int 
   const PieceDistance to_a(a), to_b(b);
   return sampled_maximum(
       [&](double u) {
-        const Vec3 p = curve.point(u);
-        return std::min(to_a(p), to_b(p));
+        return nearer_distance(to_a, to_b, curve.point(u));
       },
       curve.u_min(), curve.u_max(), samples);
 }

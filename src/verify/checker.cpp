@@ -330,10 +330,7 @@ void Checker::nearest_on_path(const Vec3& p, std::size_t& m, double& u, double& 
 
 double blend_deviation(const Curve& c, const program::ProgrammedCorner& pc) {
   const PieceDistance before(*pc.before), after(*pc.after);
-  auto dev = [&](double u) {
-    const Vec3 p = c.point(u);
-    return std::min(before(p), after(p));
-  };
+  auto dev = [&](double u) { return nearer_distance(before, after, c.point(u)); };
   const int n = tolerances::check_blend_samples;
   const double u0 = c.u_min(), h = (c.u_max() - c.u_min()) / n;
   std::vector<double> f(static_cast<std::size_t>(n) + 1);

@@ -52,6 +52,11 @@ public:
   /// (C(u) - p) . C'(u) = 0 kept inside a sign bracket, the turns in the order of their axial
   /// distance from p until it passes the nearest found; always the distance to a point of the part.
   [[nodiscard]] double distance_mm(const Vec3& p, double u0, double u1) const noexcept;
+  /// A lower bound [mm] of p's distance from the part between u0 <= u1, without trigonometry: its
+  /// distance from the ring that holds the part's points (about the axis, radii between the
+  /// part's end radii, heights between its end heights); on a circle the distance to the foot
+  /// where p's angle lies within the part.
+  [[nodiscard]] double distance_lower_bound_mm(const Vec3& p, double u0, double u1) const noexcept;
 
 private:
   CircleFrame frame_;

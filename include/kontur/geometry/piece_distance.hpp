@@ -20,6 +20,9 @@ class PieceDistance {
   explicit PieceDistance(const Curve& piece);
   /// Distance [mm] from p to the piece.
   [[nodiscard]] double operator()(const Vec3& p) const;
+  /// A lower bound [mm] of that distance, cheaper than it: a line's distance itself, an arc's
+  /// HelixArc::distance_lower_bound_mm, 0 for another curve.
+  [[nodiscard]] double lower_bound(const Vec3& p) const;
 
  private:
   const Curve& piece_;
@@ -28,5 +31,11 @@ class PieceDistance {
   std::vector<double> u_;   // the sampled parameters of another curve
   std::vector<Vec3> points_;
 };
+
+/// p's distance [mm] from the nearer of two pieces: exactly std::min(a(p), b(p)), the farther
+/// piece's distance left out where its lower bound already exceeds the nearer's (by
+/// tolerances::piece_distance_bound_margin, beyond rounding). What the corner blender sizes a blend
+/// by and the checker measures it by: the two pieces a blend replaces, each point near one of them.
+[[nodiscard]] double nearer_distance(const PieceDistance& a, const PieceDistance& b, const Vec3& p);
 
 }  // namespace kontur
