@@ -483,8 +483,14 @@ inline constexpr int smooth_fit_spans_per_line = 8;
 /// Fits tried before a run is left as lines.
 inline constexpr int smooth_fit_iterations = 24;
 /// Factor on the weights of the lines where a fit strays (the smoothing length there shrinks by
-/// its fourth root: 2).
+/// its fourth root: 2): the largest. The dense fit raises a line that strays by r times the target
+/// by r^smooth_fit_weight_power, at least smooth_fit_weight_step_min, at most this (issue 12: with
+/// the whole step everywhere the curve stayed far inside the tolerance around lines just beyond it;
+/// on XYZ.ini random_lines_0.001in (G20) 14.166 -> 12.685 s, performance/3D_Chips 60.442 ->
+/// 59.664 s; r^2 took up to 61 % more instructions on random_lines read in mm, r^4 18 %).
 inline constexpr double smooth_fit_weight_step = 16.0;
+inline constexpr double smooth_fit_weight_step_min = 2.0;
+inline constexpr double smooth_fit_weight_power = 4.0;
 /// ... squared while the fit strays by more than this many times its target (random_lines_0.001in
 /// in mm, lines of a tenth of the tolerance: its first fits stray by 45 and 490 times the target,
 /// and took 16 and 14 iterations; 802 instead of 878 M instructions per run, its times unchanged

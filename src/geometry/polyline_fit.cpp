@@ -240,7 +240,7 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
   std::vector<double> deviation(m);
   std::vector<Vec3> samples(sample_basis.size());
   std::vector<double> own_d2(sample_basis.size());  // a sample's squared distance from its own line
-  std::vector<char> raise(m);
+  std::vector<double> raise(m);  // each line's factor on its weights in this iteration
 
   // The normal equations of the free control points: a banded matrix (three off-diagonals) whose
   // pattern never changes: built once (its lower triangle, which the LDL^T solver reads), analysed
@@ -374,17 +374,24 @@ Attempt fit_with_knots(const std::vector<Vec3>& v, const std::vector<double>& s,
     // More weight where the curve strays, and on the spans beside it: on the lines where it strays
     // from them, on the vertices where it passes one too far.
     // (far beyond the target, as a fit of lines much shorter than its smoothing length starts: the
-    // step squared, which saves the iterations that would only approach it)
-    const double step = worst > tolerances::smooth_fit_far_targets * target
-                            ? tolerances::smooth_fit_weight_step * tolerances::smooth_fit_weight_step
-                            : tolerances::smooth_fit_weight_step;
+    // step squared, which saves the iterations that would only approach it. Nearer, the dense fit
+    // raises each line by how far it strays, (deviation / target)^smooth_fit_weight_power within
+    // [smooth_fit_weight_step_min, smooth_fit_weight_step], and a neighbour by the largest of its
+    // neighbours': a line just beyond the target no longer gets the whole step, which left its
+    // stretch of the curve far inside the tolerance and bent it harder than needed.)
+    const bool far = worst > tolerances::smooth_fit_far_targets * target;
     for (auto [dev, weights] : {std::pair{&deviation, &factor}, std::pair{&vertex_deviation, &vertex_factor}}) {
-      std::fill(raise.begin(), raise.end(), 0);
-      for (std::size_t j = 0; j < m; ++j)
-        if ((*dev)[j] > target)
-          for (std::size_t k = j > 0 ? j - 1 : 0; k <= std::min(m - 1, j + 1); ++k) raise[k] = 1;
-      for (std::size_t j = 0; j < m; ++j)
-        if (raise[j] != 0) (*weights)[j] *= step;
+      std::fill(raise.begin(), raise.end(), 1.0);
+      for (std::size_t j = 0; j < m; ++j) {
+        if (!((*dev)[j] > target)) continue;
+        const double step =
+            far ? tolerances::smooth_fit_weight_step * tolerances::smooth_fit_weight_step
+            : few_knots ? tolerances::smooth_fit_weight_step
+                        : std::clamp(std::pow((*dev)[j] / target, tolerances::smooth_fit_weight_power),
+                                     tolerances::smooth_fit_weight_step_min, tolerances::smooth_fit_weight_step);
+        for (std::size_t k = j > 0 ? j - 1 : 0; k <= std::min(m - 1, j + 1); ++k) raise[k] = std::max(raise[k], step);
+      }
+      for (std::size_t j = 0; j < m; ++j) (*weights)[j] *= raise[j];
     }
   }
   return result;

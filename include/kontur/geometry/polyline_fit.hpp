@@ -12,7 +12,8 @@
 // smoothing spline whose smoothing length l starts long (tolerances::smooth_fit_length_tolerances
 // times the tolerance) and is shortened where the curve strays: every line whose span comes
 // farther than the tolerance from the polyline, or whose vertex is farther from the curve, has the
-// weights of its points and its neighbours' raised (tolerances::smooth_fit_weight_step), and the
+// weights of its points and its neighbours' raised (by how far it strays, up to
+// tolerances::smooth_fit_weight_step; with few knots by that step), and the
 // fit is solved again (a banded system), at most tolerances::smooth_fit_iterations times. With few
 // knots (PolylineFitOptions) a span covers several lines, and knots are added where it strays.
 #include <kontur/geometry/nurbs.hpp>
