@@ -20,6 +20,7 @@
 #include <kontur/verify/checker.hpp>
 #include <limits>
 #include <memory>
+#include <numbers>
 #include <random>
 #include <string>
 #include <vector>
@@ -707,8 +708,14 @@ TEST(HelixArcDistance, TheLowerBoundHoldsAndTheNearerOfTwoPiecesIsExactlyTheSmal
       EXPECT_LE(bound, nearest_by_sampling(*arc, p, u0, u1) + 1e-9) << "arc " << i << " point " << k;
       if (kind == 0) {
         const Vec3 q = p - f.centre;
-        const double angle = std::atan2(q.dot(f.e2), q.dot(f.e1)), a0 = arc->sweep_rad() * u0, a1 = arc->sweep_rad() * u1;
-        if (angle >= a0 && angle <= a1) EXPECT_NEAR(bound, d, 1e-12 * (1.0 + r)) << "arc " << i << " point " << k;
+        // (p's angle from e1 in [0, 2 pi), the part's from a0 to a1 <= 6.4 rad)
+        double angle = std::atan2(q.dot(f.e2), q.dot(f.e1));
+        if (angle < 0.0) angle += 2.0 * std::numbers::pi;
+        const double a0 = arc->sweep_rad() * u0, a1 = arc->sweep_rad() * u1;
+        const bool within = (angle >= a0 && angle <= a1) || angle + 2.0 * std::numbers::pi <= a1;
+        if (within) {
+          EXPECT_NEAR(bound, d, 1e-12 * (1.0 + r)) << "arc " << i << " point " << k;
+        }
       }
       for (const PieceDistance* other : {&to_line, &to_other, &to_generic}) {
         const double exact = std::min(d, (*other)(p));

@@ -48,11 +48,12 @@ double nearer_distance(const PieceDistance& a, const PieceDistance& b, const Vec
   const bool a_first = bound_a <= bound_b;
   const PieceDistance& first = a_first ? a : b;
   const PieceDistance& second = a_first ? b : a;
-  const double second_bound = a_first ? bound_b : bound_a;
-  const double d = first(p);
+  const double first_bound = a_first ? bound_a : bound_b, second_bound = a_first ? bound_b : bound_a;
+  // (a line's bound is its distance: not computed again)
+  const double d = first.bound_is_exact() ? first_bound : first(p);
   const double margin = tolerances::piece_distance_bound_margin * (1.0 + p.norm() + second_bound);  // [mm]
   if (d < second_bound - margin) return d;
-  return std::min(d, second(p));
+  return std::min(d, second.bound_is_exact() ? second_bound : second(p));
 }
 
 }  // namespace kontur

@@ -565,7 +565,7 @@ PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s
     return path_limits_at(g, cap_at(share, rate_share), machine, junction_jerk_share);
   }
   double best_v = 0.0, best_time = kInf;  // [mm/s], [s]
-  std::optional<PathLimits> best;        // its limits, where the estimate needed them
+  std::optional<PathLimits> best;        // its limits (none where every cap is zero)
   for (const double share : tolerances::plan_centripetal_shares) {
     if (!centripetal_allowed(share)) break;
     for (const double rate_share : tolerances::plan_curvature_rate_jerk_shares) {
@@ -577,10 +577,11 @@ PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s
       // bands, as the look-ahead and the chain profile speed a curved piece up below its cap,
       // where the piece runs alone in its chain or at the smallest curvature-change share:
       // plan/banded_profile.hpp, where the last band's small acceleration near a high cap costs
-      // far less than its duration. A larger curvature-change share trades jerk, and the braking
-      // into the next piece across a smooth junction, not weighed, outweighs it: by the bands
-      // there, arc-terminal ran 1.7 % slower on the default machine. Each change has the piece's
-      // length, half of it where both ends are weighed.)
+      // far less than its duration. At a larger curvature-change share the cap rises at the cost
+      // of jerk, and the braking into the next piece across a smooth junction, which is not
+      // weighed, costs more than the bands' estimate saves: by the bands there too, arc-terminal
+      // ran 1.7 % slower on the default machine. Each change has the piece's length, half of it
+      // where both ends are weighed.)
       double time = v > 0.0 ? length_mm / v : kInf;
       std::optional<PathLimits> l;
       if (v > 0.0) {

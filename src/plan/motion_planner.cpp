@@ -472,7 +472,8 @@ void MotionPlanner::raise_chain_lows(Chain& chain, double cap_before, double cap
     while (i > 0 && cap(i - 1) < level && raisable(i - 1)) --i;
     while (j + 1 < n && cap(j + 1) < level && raisable(j + 1)) ++j;
     level = std::min({level, cap_at(i, true), cap_at(j, false)});
-    for (std::size_t q = i; q <= j; ++q) raised[q] = std::max(raised[q], q == k ? level : std::min(level, top(q)));
+    // (level <= top(k): each piece of the region at most its own largest cap)
+    for (std::size_t q = i; q <= j; ++q) raised[q] = std::max(raised[q], std::min(level, top(q)));
   }
   // (the look-ahead plans a chain of several pieces with their smallest jerk: a raise that would
   // lower it is not taken; with it, 3D_Chips on the default machine ran 1 % slower)
@@ -486,8 +487,7 @@ void MotionPlanner::raise_chain_lows(Chain& chain, double cap_before, double cap
     ps[k].limits = l;
     any = true;
   }
-  if (any)
-    for (std::size_t k = 0; k < n; ++k) chain.count(ps[k], k == 0);
+  if (any) chain.recount();
 }
 
 void MotionPlanner::Chain::count(const Piece& p, bool first) noexcept {
@@ -496,6 +496,10 @@ void MotionPlanner::Chain::count(const Piece& p, bool first) noexcept {
   max_cap_mm_s = first ? cap : std::max(max_cap_mm_s, cap);
   length_mm = (first ? 0.0 : length_mm) + p.length_mm;
   own_time_s = (first ? 0.0 : own_time_s) + (cap > 0.0 ? p.length_mm / cap : 0.0);
+}
+
+void MotionPlanner::Chain::recount() noexcept {
+  for (std::size_t k = 0; k < pieces.size(); ++k) count(pieces[k], k == 0);
 }
 
 void MotionPlanner::append_stretches(const Chain& chain, std::vector<CapStretch>& out) {
@@ -613,7 +617,7 @@ void MotionPlanner::settle_last(double end_share, bool end_smooth, double end_ve
   // Its cap changed: it may no longer belong to the chain (add_piece decides anew).
   Piece moved = std::move(p);
   open_.pieces.pop_back();
-  for (std::size_t k = 0; k < open_.pieces.size(); ++k) open_.count(open_.pieces[k], k == 0);
+  open_.recount();
   add_piece(std::move(moved));
 }
 

@@ -23,6 +23,8 @@ class PieceDistance {
   /// A lower bound [mm] of that distance, cheaper than it: a line's distance itself, an arc's
   /// HelixArc::distance_lower_bound_mm, 0 for another curve.
   [[nodiscard]] double lower_bound(const Vec3& p) const;
+  /// The lower bound is the distance itself (a line).
+  [[nodiscard]] bool bound_is_exact() const noexcept { return line_ != nullptr; }
 
  private:
   const Curve& piece_;

@@ -156,8 +156,9 @@ struct PathGeometry {
 /// chain's caps, which the motion passes at the cap: MotionPlanner::raise_chain_lows).
 /// A curved stretch's change is estimated by its acceleration_bands (as the look-ahead and the chain
 /// profile speed it up below its cap) where `alone` (it runs alone in its chain: both its ends are
-/// corners or stops, planned by its bands) or at the smallest curvature-change share (larger ones
-/// trade jerk, which the bands do not cover); a banded change longer than the stretch (half of it
+/// corners or stops, planned by its bands) or at the smallest curvature-change share (at larger
+/// ones the estimate, which does not weigh the braking at a smooth end, chose caps that ran
+/// slower); a banded change longer than the stretch (half of it
 /// where change_weight >= 1) is counted over the stretch, up to the speed it reaches there.
 [[nodiscard]] PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s,
                                      const Machine& machine, double junction_jerk_share,

@@ -87,6 +87,8 @@ class MotionPlanner {
     // Takes a piece's cap, length and time at its cap into the figures above (`first`: they
     // start anew with it).
     void count(const Piece& p, bool first) noexcept;
+    // The figures above anew from every piece (after a piece's limits changed or one was removed).
+    void recount() noexcept;
   };
   // Raises the cap of each curved piece at a low of the chain's caps (at most its neighbours';
   // cap_before / cap_after [mm/s]: the caps of the pieces beside the chain across smooth
