@@ -336,6 +336,35 @@ TEST(ChainProfile, BrakesFromTheCapUnderTheSpeedBandsItRunsThrough) {
   EXPECT_LT(a_min, -0.95 * 700.0);  // the lowest band's
 }
 
+// A braking into tight stretches at the end of a chain (3D_Chips on XYZ.ini: a 12 mm chain whose
+// last two pieces are capped at 103 and 99 mm/s, with 177 and 162 mm/s^2 left at their caps) passes
+// those stretches slowly: a braking that starts at zero acceleration and never exceeds the largest
+// acceleration of any stretch is within (v^2 - v1^2) / (2 a) of the end only below v. Above the
+// tight caps it runs under the limits of the stretches it passes there, not at the tight ones' caps
+// (until 2026-12-05 every speed band of a change took the smallest limits of all the stretches it
+// runs through: a peak of 111.6 mm/s and 162 mm/s^2 of braking above 103 mm/s).
+TEST(ChainProfile, BrakesIntoTightStretchesUnderTheLimitsOfThoseItPassesAtEachSpeed) {
+  std::vector<CapStretch> st;
+  for (int k = 0; k < 20; ++k) st.push_back({1.0, 130.0, 650.0, 7e4, bands_of(130.0, 650.0, 1.2, 6.5e4)});
+  st.push_back({1.0, 103.0, 177.0, 7e4, bands_of(103.0, 177.0, 8.0, 6.5e4)});
+  st.push_back({0.6, 99.0, 162.0, 7e4, bands_of(99.0, 162.0, 8.0, 6.5e4)});
+  const PathLimits ceiling{99.0, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  const ScurveProfile flat = plan_scurve(21.6, 99.0, 70.0, {99.0, 162.0, 6.5e4});
+  const auto p = plan_chain_profile(st, 99.0, 70.0, ceiling, 0.0005, flat.duration());
+  ASSERT_TRUE(p.has_value());
+  expect_within_own_bands(*p, st);
+  EXPECT_EQ(p->end_velocity(), 70.0);
+  double v_max = 0.0, a_min_above = 0.0;  // [mm/s], the braking above the tight caps [mm/s^2]
+  for (int k = 0; k <= 4000; ++k) {
+    const auto x = p->sample(p->duration() * k / 4000);
+    v_max = std::max(v_max, x.v);
+    if (x.v > 103.0) a_min_above = std::min(a_min_above, x.a);
+  }
+  EXPECT_GT(v_max, 115.0);
+  EXPECT_LT(a_min_above, -1.5 * 162.0);
+  EXPECT_LT(p->duration(), 0.9 * flat.duration());
+}
+
 TEST(ChainProfile, SeededRandomBandedChainsKeepEachStretchsBands) {
   for_seeded_random_chains(20261205, 200, 0.7,
                            [](const PathProfile& p, const std::vector<CapStretch>& st, double v0, double v1, double lo) {

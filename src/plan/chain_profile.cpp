@@ -128,6 +128,12 @@ class ChainPlanner {
       min_acc_.emplace_back(acc);
       min_jerk_.emplace_back(jerk);
     }
+    // (the largest path acceleration of any stretch at any speed, at most the chain's)
+    for (const CapStretch& c : stretches) {
+      max_acc_ = std::max(max_acc_, c.max_acceleration);
+      for (int k = 0; k < c.bands.n; ++k) max_acc_ = std::max(max_acc_, c.bands.acceleration[static_cast<std::size_t>(k)]);
+    }
+    max_acc_ = std::min(max_acc_, limits_.max_acceleration);
     junction_speed_.assign(caps_.size() + 1, 0.0);
     junction_speed_[caps_.size()] = v1_;
     for (std::size_t m = caps_.size() - 1; m >= 1; --m)
@@ -291,16 +297,36 @@ class ChainPlanner {
       bands.acceleration[static_cast<std::size_t>(bands.n)] = acceleration;
       ++bands.n;
     };
+    // Each band takes the smallest limits of the stretches the change may pass at its speeds only.
+    // A monotone change (no peak above both ends) starts from zero acceleration and never exceeds
+    // max_acc_, so it runs faster than `below` only farther than (below^2 - low^2) / (2 max_acc_)
+    // from its slow end: a braking into tight stretches passes them slowly (runs_above). A change
+    // with a peak: every stretch it runs through, at every band.
+    const bool monotone = !(peak > std::max(v, w));
+    const auto runs_above = [&](double below) -> std::pair<std::size_t, std::size_t> {
+      if (!monotone || !(below > low) || !(max_acc_ > 0.0)) return {first, last};
+      const double reach = (below * below - low * low) / (2.0 * max_acc_);
+      if (braking) return {first, std::max(first, std::min(last, stretch_ending_at(to - reach)))};
+      return {std::min(last, std::max(first, stretch_at(from + reach))), last};
+    };
+    double below = low;  // the lower edge of the band being added [mm/s]
+    const auto add_band = [&](std::size_t k, double top_mm_s) {
+      const auto [f, g] = runs_above(below);
+      add(top_mm_s, std::max(min_acc_[k](f, g), l.a));
+      bands.max_jerk = std::min(bands.max_jerk, min_jerk_[k](f, g));
+    };
     for (std::size_t k = 0; k + 1 < levels_.size(); ++k) {
       if (!(levels_[k] > low) || !(levels_[k] < top - slack_v_)) continue;
-      add(levels_[k], std::max(min_acc_[k](first, last), l.a));
-      bands.max_jerk = std::min(bands.max_jerk, min_jerk_[k](first, last));
+      add_band(k, levels_[k]);
+      below = levels_[k];
     }
-    add(top, l.a);
-    // (accelerations not rising with the speed: a level's limits also hold below it)
-    for (int k = bands.n - 2; k >= 0; --k)
+    add_band(level(top), top);
+    // (accelerations not rising with the speed, as AccelerationBands asks: a faster band, over
+    // fewer stretches, may leave more than a slower one; it keeps the slower one's. Before the
+    // stretches were chosen per band, each band's were the same and this changed nothing.)
+    for (int k = 1; k < bands.n; ++k)
       bands.acceleration[static_cast<std::size_t>(k)] =
-          std::max(bands.acceleration[static_cast<std::size_t>(k)], bands.acceleration[static_cast<std::size_t>(k + 1)]);
+          std::min(bands.acceleration[static_cast<std::size_t>(k)], bands.acceleration[static_cast<std::size_t>(k - 1)]);
     return bands;
   }
 
@@ -559,6 +585,7 @@ class ChainPlanner {
   // [level]: each stretch's limits at speeds up to the level, and their minima over ranges
   std::vector<RangeMin> min_acc_, min_jerk_;
   double length_ = 0.0, slack_v_ = 0.0;
+  double max_acc_ = 0.0;  // the largest acceleration limit of any stretch at any speed [mm/s^2]
   bool banded_ = false;  // a stretch has speed bands: the limits are looked up by speed level
 };
 
