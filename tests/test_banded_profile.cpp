@@ -167,7 +167,7 @@ TEST(BandedProfile, ACirclesBandsKeepEveryAxisWithinItsAcceleration) {
   g.max_kappa = 1.0 / r;
   g.set_pairs(0, px);
   g.set_pairs(1, py);
-  const PathLimits l = path_limits(g, 120.0, 1000.0, m, 0.0, 1.0, true);
+  const PathLimits l = path_limits(g, 120.0, 1000.0, m, {.alone = true});
   const AccelerationBands b = acceleration_bands(g, l, m, 0.0);
   ASSERT_GT(b.n, 1);
   EXPECT_EQ(b.top_mm_s[static_cast<std::size_t>(b.n - 1)], l.max_velocity);

@@ -141,7 +141,7 @@ TEST(Constraints, AxisFarSlowerThanTheOthersLeavesAHelixAccelerationAtItsCap) {
   const HelixArc helix(CircleFrame{Vec3(12.7, 0, 0.0508), Vec3(-1, 0, 0), Vec3(0, -1, 0), Vec3(0, 0, 1)}, 12.7,
                        std::numbers::pi, -0.0508);
   const PathGeometry g = path_geometry(helix, helix.u_min(), helix.u_max());
-  const PathLimits l = path_limits(g, 39.0, 423.3, m, 0.0);
+  const PathLimits l = path_limits(g, 39.0, 423.3, m);
   ASSERT_GT(l.max_velocity, 0.0);
   ASSERT_GT(l.max_acceleration, 0.0);
   for (int k = 0; k <= 1000; ++k) {
@@ -273,13 +273,13 @@ TEST(Constraints, AnArcBetweenSmallCurvatureJumpsTakesTheLargestCentripetalShare
   const HelixArc arc(CircleFrame{}, R, 0.5 * std::numbers::pi);
   const PathGeometry g = path_geometry(arc, arc.u_min(), arc.u_max());
   const double largest = speed_cap(g, 1270.0, m, std::ranges::max(tolerances::plan_centripetal_shares));  // [mm/s]
-  const PathLimits from_rest = path_limits(g, arc.length_mm(), 1270.0, m, 0.0, 1.0, true, 0.0);
+  const PathLimits from_rest = path_limits(g, arc.length_mm(), 1270.0, m, {.alone = true});
   EXPECT_LT(from_rest.max_velocity, 0.98 * largest);
-  const PathLimits near_cap = path_limits(g, arc.length_mm(), 1270.0, m, 0.0, 1.0, true, 0.97 * largest);
+  const PathLimits near_cap = path_limits(g, arc.length_mm(), 1270.0, m, {.alone = true, .change_from_mm_s = 0.97 * largest});
   EXPECT_EQ(near_cap.max_velocity, largest);
   // Inside a chain (no change weighed) at most the chain's largest share: the length alone would
   // always take the largest and leave the chain's profile little acceleration.
-  const PathLimits inside = path_limits(g, arc.length_mm(), 1270.0, m, 0.0, 0.0, false);
+  const PathLimits inside = path_limits(g, arc.length_mm(), 1270.0, m, {.change_weight = 0.0});
   EXPECT_EQ(inside.max_velocity, speed_cap(g, 1270.0, m, tolerances::plan_chain_centripetal_share_max));
 }
 
@@ -296,8 +296,8 @@ TEST(Constraints, AnArcAtTheStartOfAChainIsEstimatedByItsSpeedBands) {
   const HelixArc arc(CircleFrame{}, R, std::numbers::pi);
   const PathGeometry g = path_geometry(arc, arc.u_min(), arc.u_max());
   const double feed = 423.33;  // [mm/s]
-  const PathLimits alone = path_limits(g, arc.length_mm(), feed, m, 0.0, 1.0, true, 0.0);
-  const PathLimits chain_start = path_limits(g, arc.length_mm(), feed, m, 0.0, 0.5, false, 5.0);
+  const PathLimits alone = path_limits(g, arc.length_mm(), feed, m, {.alone = true});
+  const PathLimits chain_start = path_limits(g, arc.length_mm(), feed, m, {.change_weight = 0.5, .change_from_mm_s = 5.0});
   EXPECT_GT(chain_start.max_velocity, speed_cap(g, feed, m, tolerances::plan_chain_centripetal_share_max) * 1.01);
   EXPECT_GE(chain_start.max_velocity, alone.max_velocity);
 }
@@ -317,9 +317,9 @@ TEST(Constraints, CurvatureChangeTakesALargerShareInsideAChainAndNeverMoreThanTh
   const double first = std::cbrt(tolerances::plan_curvature_rate_jerk_shares[0] * J * R * R);
   const double largest = std::cbrt(std::ranges::max(tolerances::plan_curvature_rate_jerk_shares) * J * R * R);
   ASSERT_LT(largest, std::sqrt(tolerances::plan_centripetal_shares[2] * A * R));  // the rate binds
-  const PathLimits inside = path_limits(g, arc.length_mm(), 1e4, m, 0.0, 2 * tolerances::plan_share_choice_change_weight);
-  const PathLimits beside = path_limits(g, arc.length_mm(), 1e4, m, tolerances::plan_smooth_junction_jerk_share, 1.0);
-  const PathLimits at_low = path_limits(g, arc.length_mm(), 1e4, m, 0.0, 0.0, false, 0.0, true);
+  const PathLimits inside = path_limits(g, arc.length_mm(), 1e4, m, {.change_weight = 2 * tolerances::plan_share_choice_change_weight});
+  const PathLimits beside = path_limits(g, arc.length_mm(), 1e4, m, {.junction_jerk_share = tolerances::plan_smooth_junction_jerk_share});
+  const PathLimits at_low = path_limits(g, arc.length_mm(), 1e4, m, {.change_weight = 0.0, .at_a_low = true});
   const double chain_largest = std::cbrt(tolerances::plan_chain_curvature_rate_share_max * J * R * R);
   EXPECT_GT(inside.max_velocity, first * 1.2);
   EXPECT_LE(inside.max_velocity, chain_largest * (1 + 1e-12));

@@ -526,8 +526,10 @@ PathLimits with_first_axis_fallback(PathLimits l, const Machine& machine) noexce
 }  // namespace
 
 PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s, const Machine& machine,
-                       double junction_jerk_share, double change_weight, bool alone,
-                       double change_from_mm_s, bool at_a_low) noexcept {
+                       const ShareChoice& choice) noexcept {
+  const double junction_jerk_share = choice.junction_jerk_share, change_weight = choice.change_weight,
+               change_from_mm_s = choice.change_from_mm_s;
+  const bool alone = choice.alone, at_a_low = choice.at_a_low;
   const bool curved = !g.curvature.isZero();
   const double pair_speed = pair_centripetal_speed(g, machine);  // [mm/s]
   // The shares the stretch may take (each list rises: those allowed are a prefix of it): on a line
@@ -643,7 +645,7 @@ PathLimits move_limits(const MoveGeometry& move, const Machine& machine, int sam
   const std::vector<double> bp = c.breakpoints();
   PathGeometry g;
   for (std::size_t k = 0; k + 1 < bp.size(); ++k) g.merge(path_geometry(c, bp[k], bp[k + 1], samples));
-  return path_limits(g, move.length_mm, move.feed_mm_s, machine, 0.0);
+  return path_limits(g, move.length_mm, move.feed_mm_s, machine);
 }
 
 namespace {

@@ -453,7 +453,8 @@ void MotionPlanner::raise_chain_lows(Chain& chain, double cap_before, double cap
   const auto top = [&](std::size_t k) {  // its cap at the largest shares [mm/s], once a piece
     if (tops[k] < 0.0) {
       const Piece& p = ps[k];
-      tops[k] = path_limits(p.geometry, p.length_mm, p.feed_mm_s, machine_, p.planned_share, 0.0, false, 0.0, true)
+      tops[k] = path_limits(p.geometry, p.length_mm, p.feed_mm_s, machine_,
+                            {.junction_jerk_share = p.planned_share, .change_weight = 0.0, .at_a_low = true})
                     .max_velocity;
     }
     return tops[k];
@@ -597,9 +598,11 @@ PathLimits MotionPlanner::piece_limits(const Piece& piece, double share, bool en
   if (!piece.start_smooth) from = std::min(from, piece.start_velocity);
   if (!end_smooth) from = std::min(from, end_velocity);
   // (a piece with a corner or a stop at both ends is alone in its chain: planned by speed bands)
-  return path_limits(piece.geometry, piece.length_mm, piece.feed_mm_s, machine_, share,
-                     end_weight(piece.start_smooth) + end_weight(end_smooth), !piece.start_smooth && !end_smooth,
-                     std::isfinite(from) ? from : 0.0);
+  return path_limits(piece.geometry, piece.length_mm, piece.feed_mm_s, machine_,
+                     {.junction_jerk_share = share,
+                      .change_weight = end_weight(piece.start_smooth) + end_weight(end_smooth),
+                      .alone = !piece.start_smooth && !end_smooth,
+                      .change_from_mm_s = std::isfinite(from) ? from : 0.0});
 }
 
 void MotionPlanner::settle_last(double end_share, bool end_smooth, double end_velocity) {

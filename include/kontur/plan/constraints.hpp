@@ -139,31 +139,43 @@ struct PathGeometry {
 /// (program::BlendSpeed, wired by the pipeline).
 [[nodiscard]] double curve_speed_cap(const Curve& curve, double feed_mm_s, const Machine& machine);
 
+/// How path_limits chooses a stretch's centripetal and curvature-change shares: what lies at its
+/// ends, and how much the speed changes there weigh against its length.
+struct ShareChoice {
+  /// The share of each axis's jerk the junctions at the stretch's ends take (see junction).
+  double junction_jerk_share = 0.0;
+  /// How many times the time a change of speed at an end loses is counted, for both ends together
+  /// over 2 (1: a stretch planned alone, speeding up and braking; the motion planner weighs each
+  /// end of a piece inside a chain less, tolerances::plan_share_choice_change_weight; 0: the
+  /// length alone decides).
+  double change_weight = 1.0;
+  /// It runs alone in its chain: both its ends are corners or stops, planned by its speed bands.
+  bool alone = false;
+  /// [mm/s] the speed its changes start from: the speed a junction at its ends allows (0: rest).
+  double change_from_mm_s = 0.0;
+  /// It is a low of its chain's caps, which the motion passes at the cap
+  /// (MotionPlanner::raise_chain_lows).
+  bool at_a_low = false;
+};
+
 /// The path limits of a stretch of length `length_mm`: its speed cap (speed_cap) and the largest
 /// path acceleration and jerk that keep every axis within its limits at any speed up to the cap:
 /// |t_i| a + K_i v^2 <= A_i, and |t_i| j + 3 K_i v a + K'_i v^3 <= (1 - junction_share) J_i, the
-/// cross term taking at most plan_cross_jerk_share. `junction_jerk_share` is the share of the
-/// junctions at the stretch's ends (see junction). Of the centripetal shares in
-/// tolerances::plan_centripetal_shares and the curvature-change shares in
-/// tolerances::plan_curvature_rate_jerk_shares (those that leave the path at least
-/// plan_path_jerk_share_min of the jerk), the pair with the shortest estimated time is taken: the
-/// length at the cap plus 2 `change_weight` times the time a change from `change_from_mm_s` (rest
-/// unless given: the speed a junction at its ends allows) to the cap loses against running its
-/// distance at the cap (1: a stretch planned alone, speeding up and braking; the motion planner
-/// weighs each end of a piece inside a chain less, tolerances::plan_share_choice_change_weight).
-/// Shares above the chain's largest (tolerances::plan_chain_centripetal_share_max and
-/// plan_chain_curvature_rate_share_max) only where `change_weight` > 0 or `at_a_low` (a low of a
-/// chain's caps, which the motion passes at the cap: MotionPlanner::raise_chain_lows).
-/// A curved stretch's change is estimated by its acceleration_bands (as the look-ahead and the chain
-/// profile speed it up below its cap) where `alone` (it runs alone in its chain: both its ends are
-/// corners or stops, planned by its bands) or at the smallest curvature-change share (at larger
-/// ones the estimate, which does not weigh the braking at a smooth end, chose caps that ran
-/// slower); a banded change longer than the stretch (half of it
-/// where change_weight >= 1) is counted over the stretch, up to the speed it reaches there.
+/// cross term taking at most plan_cross_jerk_share; junction_share is `choice`'s
+/// junction_jerk_share. Of the centripetal shares in tolerances::plan_centripetal_shares and the
+/// curvature-change shares in tolerances::plan_curvature_rate_jerk_shares (those that leave the
+/// path at least plan_path_jerk_share_min of the jerk), the pair with the shortest estimated time
+/// is taken: the length at the cap plus 2 change_weight times the time a change from
+/// change_from_mm_s to the cap loses against running its distance at the cap. Shares above the
+/// chain's largest (tolerances::plan_chain_centripetal_share_max and
+/// plan_chain_curvature_rate_share_max) only where change_weight > 0 or at_a_low. A curved
+/// stretch's change is estimated by its acceleration_bands (as the look-ahead and the chain profile
+/// speed it up below its cap) where it is `alone` or at the smallest curvature-change share (at
+/// larger ones the estimate, which does not weigh the braking at a smooth end, chose caps that ran
+/// slower); a banded change longer than the stretch (half of it where change_weight >= 1) is
+/// counted over the stretch, up to the speed it reaches there.
 [[nodiscard]] PathLimits path_limits(const PathGeometry& g, double length_mm, double feed_mm_s,
-                                     const Machine& machine, double junction_jerk_share,
-                                     double change_weight = 1.0, bool alone = false,
-                                     double change_from_mm_s = 0.0, bool at_a_low = false) noexcept;
+                                     const Machine& machine, const ShareChoice& choice = {}) noexcept;
 
 /// The speed bands of a curved stretch whose limits at its cap are `at_cap` (from path_limits or
 /// path_limits_at with the same junction share): in the band up to top_k = f_k cap
