@@ -144,10 +144,10 @@ struct PathGeometry {
 struct ShareChoice {
   /// The share of each axis's jerk the junctions at the stretch's ends take (see junction).
   double junction_jerk_share = 0.0;
-  /// How many times the time a change of speed at an end loses is counted, for both ends together
-  /// over 2 (1: a stretch planned alone, speeding up and braking; the motion planner weighs each
-  /// end of a piece inside a chain less, tolerances::plan_share_choice_change_weight; 0: the
-  /// length alone decides).
+  /// The weight of the speed changes at its ends: the estimated time adds 2 change_weight times
+  /// the time one change loses (1: a stretch planned alone, speeding up and braking; the motion
+  /// planner weighs each end of a piece inside a chain less, tolerances::plan_share_choice_change_weight;
+  /// 0: the length alone decides).
   double change_weight = 1.0;
   /// It runs alone in its chain: both its ends are corners or stops, planned by its speed bands.
   bool alone = false;
