@@ -11,6 +11,7 @@
 #include <kontur/plan/constraints.hpp>
 #include "support/machine_limits.hpp"
 #include <random>
+#include <vector>
 
 namespace kontur::plan {
 namespace {
@@ -131,14 +132,106 @@ TEST(BandedProfile, RefusesWhatItCannotPlan) {
   AccelerationBands b;
   EXPECT_FALSE(plan_banded_profile(10.0, 0.0, 0.0, b));  // no bands
   b.n = 2;
-  b.top_mm_s = {10.0, 20.0};
-  b.acceleration = {100.0, 200.0};  // rising: not a bound of a curve
+  b.top_mm_s = {20.0, 10.0};  // tops not ascending
+  b.acceleration = {200.0, 100.0};
   b.max_jerk = 1000.0;
   EXPECT_FALSE(plan_banded_profile(10.0, 0.0, 0.0, b));
-  b.acceleration = {200.0, 100.0};
+  b.top_mm_s = {10.0, 20.0};
   EXPECT_FALSE(plan_banded_profile(10.0, 25.0, 0.0, b));      // faster than the cap
   EXPECT_FALSE(plan_banded_profile(1e-6, 20.0, 0.0, b));      // the braking alone does not fit
   EXPECT_TRUE(plan_banded_profile(10.0, 0.0, 0.0, b));
+}
+
+// Random bands whose accelerations may rise with the speed (a chain profile's change of speed runs
+// through tight stretches only at its slow end: chain_profile.cpp's change_bands).
+AccelerationBands random_rising_bands(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  AccelerationBands b;
+  b.n = 1 + static_cast<int>(u(rng) * 8.0);
+  const double cap = 1.0 + 400.0 * u(rng);
+  double top = 0.0;
+  for (int k = 0; k < b.n; ++k) {
+    const auto kk = static_cast<std::size_t>(k);
+    top = k + 1 == b.n ? cap : top + (cap - top) * (0.1 + 0.6 * u(rng));
+    b.top_mm_s[kk] = top;
+    b.acceleration[kk] = 50.0 + 3000.0 * u(rng);
+  }
+  b.max_jerk = 1e3 + 1e6 * u(rng);
+  return b;
+}
+
+// The fastest change's duration found independently, by quadrature: its squared acceleration g(v)
+// is the largest with |dg/dv| <= 2J (the jerk bound), g <= a_max(v)^2 and g = 0 at both ends: the
+// least of 2J (v - va), 2J (vb - v) and, for each band k, a_k^2 + 2J times the distance from v to
+// the band's speeds; the time is the integral of dv / sqrt(g) over a fine grid (a sweep and a
+// breakdown into pieces in banded_profile.cpp, a direct minimum and a quadrature here).
+double brute_force_change_time(double va, double vb, const AccelerationBands& b) {
+  const int n = 100000;
+  const double h = (vb - va) / n;
+  const auto g = [&](double v) {
+    double best = 2.0 * b.max_jerk * std::max(0.0, std::min(v - va, vb - v));
+    for (int k = 0; k < b.n; ++k) {
+      const auto kk = static_cast<std::size_t>(k);
+      const double lo = k == 0 ? 0.0 : b.top_mm_s[kk - 1], hi = k + 1 == b.n ? 1e300 : b.top_mm_s[kk];
+      const double away = v < lo ? lo - v : (v > hi ? v - hi : 0.0);
+      best = std::min(best, b.acceleration[kk] * b.acceleration[kk] + 2.0 * b.max_jerk * away);
+    }
+    return best;
+  };
+  // Each grid interval with g linear inside: its time in closed form, 2 h / (sqrt g0 + sqrt g1);
+  // the kinks of g between grid points add O(h^2).
+  double t = 0.0;
+  for (int i = 0; i < n; ++i) t += 2.0 * h / (std::sqrt(g(va + i * h)) + std::sqrt(g(va + (i + 1) * h)));
+  return t;
+}
+
+TEST(BandedProfile, RisingBandsTakeTheFastestChangeAndKeepEachBandsAcceleration) {
+  std::mt19937_64 rng(20261205);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int trial = 0; trial < 60; ++trial) {
+    SCOPED_TRACE(trial);
+    const AccelerationBands b = random_rising_bands(rng);
+    const double cap = b.top_mm_s[static_cast<std::size_t>(b.n - 1)];
+    const double va = 0.6 * cap * u(rng), vb = va + (cap - va) * (0.2 + 0.8 * u(rng));
+    const double t = banded_change_time(va, vb, b);
+    ASSERT_TRUE(std::isfinite(t));
+    // (the quadrature converges to it: 1.4e-4, 1.4e-5 and 1.4e-6 of it off with 5,000, 20,000 and
+    // 80,000 intervals on the worst of these problems)
+    EXPECT_NEAR(t, brute_force_change_time(va, vb, b), 1e-5 * t);
+    // the profile over a length that fits the change: within each band's acceleration at its speed
+    const double distance = banded_change_distance(va, vb, b) * (1.0 + 2.0 * u(rng));
+    const bool up = u(rng) < 0.5;
+    const auto p = plan_banded_profile(distance, up ? va : vb, up ? vb : va, b);
+    ASSERT_TRUE(p);
+    expect_valid(*p, b, distance, up ? vb : va);
+    // never slower than the S-curve at the smallest of the bands' accelerations
+    double least = b.acceleration[0];
+    for (int k = 1; k < b.n; ++k) least = std::min(least, b.acceleration[static_cast<std::size_t>(k)]);
+    EXPECT_LE(t, velocity_change_time(va, vb, least, b.max_jerk) * (1.0 + 1e-9));
+  }
+}
+
+// A band that leaves more acceleration above a tight one: the change runs up to the tight band's
+// acceleration, flat along it, and rises again at the jerk limit once past its top (not before).
+TEST(BandedProfile, ARisingBandIsUsedOnlyOnceTheSpeedIsInIt) {
+  AccelerationBands b;
+  b.n = 2;
+  b.top_mm_s = {10.0, 40.0};
+  b.acceleration = {100.0, 400.0};
+  b.max_jerk = 10000.0;
+  const auto p = plan_banded_profile(1000.0, 0.0, 40.0, b);
+  ASSERT_TRUE(p);
+  expect_valid(*p, b, 1000.0, 40.0);
+  double peak_below = 0.0, peak_above = 0.0;  // [mm/s^2]
+  for (int k = 0; k <= 4000; ++k) {
+    const auto x = p->sample(p->duration() * k / 4000.0);
+    (x.v <= 10.0 ? peak_below : peak_above) = std::max(x.v <= 10.0 ? peak_below : peak_above, x.a);
+  }
+  EXPECT_NEAR(peak_below, 100.0, 1e-6);
+  EXPECT_GT(peak_above, 200.0);  // (the S-curve at 100 throughout would stay at 100)
+  // faster than at the tight band's acceleration throughout, slower than at the wide one's
+  EXPECT_LT(banded_change_time(0.0, 40.0, b), velocity_change_time(0.0, 40.0, 100.0, 10000.0));
+  EXPECT_GT(banded_change_time(0.0, 40.0, b), velocity_change_time(0.0, 40.0, 400.0, 10000.0));
 }
 
 // A circle of radius R in XY on a machine of A per axis: the bands let the path accelerate at

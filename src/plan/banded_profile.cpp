@@ -20,83 +20,85 @@ trajectory::PathState advance(const trajectory::PathState& x, double tau, double
 }
 
 // One constant-jerk step of a change of speed.
+// (no default values: a change's array of them is set only as far as it is used)
 struct Step {
-  double tau_s = 0.0;  // [s]
-  double jerk = 0.0;   // [mm/s^3]
+  double tau_s;  // [s]
+  double jerk;   // [mm/s^3]
 };
 
 // The steps of the fastest change from va up to vb under the bands (see the header): at most a
-// ramp up, then a flat and a ramp down per band.
+// ramp up, a flat and a ramp down per band (consecutive steps of the same jerk merged).
 struct Change {
-  std::array<Step, 2 * AccelerationBands::kMax + 2> steps{};
+  std::array<Step, 3 * AccelerationBands::kMax + 2> steps;  // (the first n are set)
   int n = 0;
   double duration_s = 0.0;
   double distance_mm = 0.0;
   void push(double tau, double jerk) {
     if (!(tau > 0.0)) return;
-    steps[static_cast<std::size_t>(n++)] = {tau, jerk};
     duration_s += tau;
+    if (n > 0 && steps[static_cast<std::size_t>(n - 1)].jerk == jerk) {
+      steps[static_cast<std::size_t>(n - 1)].tau_s += tau;
+      return;
+    }
+    steps[static_cast<std::size_t>(n++)] = {tau, jerk};
   }
 };
 
 Change change_up(double va, double vb, const AccelerationBands& b) {
   Change c;
   if (!(vb > va)) return c;
-  const double jm = b.max_jerk;
-  // Where the acceleration must have come down to: at each band's top inside (va, vb) to the next
-  // band's acceleration, at vb to zero.
-  struct Threshold {
-    double u = 0.0, a = 0.0;  // [mm/s], [mm/s^2]
-  };
-  std::array<Threshold, AccelerationBands::kMax + 1> th{};
-  int nt = 0;
-  for (int k = 0; k + 1 < b.n; ++k) {
-    const auto kk = static_cast<std::size_t>(k);
-    if (b.top_mm_s[kk] > va && b.top_mm_s[kk] < vb) th[static_cast<std::size_t>(nt++)] = {b.top_mm_s[kk], b.acceleration[kk + 1]};
-  }
-  th[static_cast<std::size_t>(nt++)] = {vb, 0.0};
-  // The ramp up from zero acceleration meets the bound first: on a band's flat (at speed
-  // va + a^2 / 2J inside that band) or on a ramp down towards a threshold (a^2 = a_m^2 + 2J (u_m - v)
-  // with v = va + a^2 / 2J, before u_m).
-  double a = kInf;
-  for (int m = 0; m < nt; ++m) {
-    const Threshold& t = th[static_cast<std::size_t>(m)];
-    const double cand = std::sqrt(0.5 * (t.a * t.a + 2.0 * jm * (t.u - va)));
-    if (va + cand * cand / (2.0 * jm) <= t.u) a = std::min(a, cand);
-  }
+  const double jm = b.max_jerk, two_j = 2.0 * jm;
+  // In the plane of the speed v and the squared acceleration g = a^2 the jerk is half the slope
+  // (j = a da/dv = g'/2): the jerk bound is |g'| <= 2J, and the fastest change (t = integral of
+  // dv / a) takes the largest g everywhere: the least of the bound alpha(u)^2 + 2J |v - u| over
+  // every speed u, with g = 0 at va and vb. The bands inside (va, vb) split it at edges
+  // e_0 = va < e_1 < ... < e_m = vb; band i (between e_i and e_i+1) has the bound alpha_i.
+  // (arrays of which the first m (+1) are set)
+  std::array<double, AccelerationBands::kMax + 1> e;
+  std::array<double, AccelerationBands::kMax> alpha, a2;
+  int m = 0;
+  e[0] = va;
   for (int k = 0; k < b.n; ++k) {
     const auto kk = static_cast<std::size_t>(k);
-    const double alpha = b.acceleration[kk], lower = k == 0 ? -kInf : b.top_mm_s[kk - 1];
-    const double vc = va + alpha * alpha / (2.0 * jm);
-    if (vc > lower && (vc <= b.top_mm_s[kk] || k + 1 == b.n)) a = std::min(a, alpha);
+    const double hi = k + 1 == b.n ? kInf : b.top_mm_s[kk];
+    const double lo = std::max(va, k == 0 ? -kInf : b.top_mm_s[kk - 1]);
+    const double end = std::min(vb, hi);
+    if (!(end > lo)) continue;
+    alpha[static_cast<std::size_t>(m)] = b.acceleration[kk];
+    a2[static_cast<std::size_t>(m)] = b.acceleration[kk] * b.acceleration[kk];
+    e[static_cast<std::size_t>(++m)] = end;
+    if (!(end < vb)) break;
   }
-  c.push(a / jm, jm);
-  double v = va + a * a / (2.0 * jm);
-  // Along the bound: flat at the band's acceleration until the ramp down towards the binding
-  // threshold (the least a_m^2 + 2J u_m ahead) begins, then that ramp, which lands on it (the flat
-  // is empty where the ramp up met the bound on that ramp). The flat's end speed is computed as
-  // u_m - (a^2 - a_m^2) / 2J, free of the cancellation of C - 2J v.
-  int first = 0;  // the thresholds the ramp passed are behind
-  while (first + 1 < nt && th[static_cast<std::size_t>(first)].u <= v) ++first;
-  for (int guard = 0; guard <= AccelerationBands::kMax + 1; ++guard) {
-    int m = nt - 1;
-    double big_c = kInf;
-    for (int i = first; i < nt; ++i) {
-      const Threshold& t = th[static_cast<std::size_t>(i)];
-      const double ci = t.a * t.a + 2.0 * jm * t.u;
-      if (ci < big_c) {
-        big_c = ci;
-        m = i;
-      }
+  // The least over the speeds at and left of each edge (left[i]) and at and right of it (right[i]).
+  std::array<double, AccelerationBands::kMax + 1> left, right;
+  const auto mi = static_cast<std::size_t>(m);
+  left[0] = 0.0;
+  for (std::size_t i = 0; i < mi; ++i) left[i + 1] = std::min(left[i] + two_j * (e[i + 1] - e[i]), a2[i]);
+  right[mi] = 0.0;
+  for (std::size_t i = mi; i-- > 0;) right[i] = std::min(right[i + 1] + two_j * (e[i + 1] - e[i]), a2[i]);
+  for (std::size_t i = 0; i < mi; ++i) {
+    // Inside band i: g(v) = min(l0 + 2J (v - e_i), alpha_i^2, r1 + 2J (e_i+1 - v)): a rise at +J
+    // up to the flat (at v_r), the flat, and a fall at -J from it (at v_f); where the rise and the
+    // fall meet below the flat (v_r > v_f), at v_m, no flat.
+    const double e0 = e[i], e1 = e[i + 1];
+    const double l0 = std::min(left[i], a2[i]), r1 = std::min(right[i + 1], a2[i]);
+    const double v_r = e0 + (a2[i] - l0) / two_j, v_f = e1 - (a2[i] - r1) / two_j;
+    if (v_r <= v_f) {
+      if (l0 < a2[i]) c.push((alpha[i] - std::sqrt(l0)) / jm, jm);
+      c.push((v_f - v_r) / alpha[i], 0.0);
+      if (r1 < a2[i]) c.push((alpha[i] - std::sqrt(r1)) / jm, -jm);
+      continue;
     }
-    const Threshold& t = th[static_cast<std::size_t>(m)];
-    const double v_end = std::max(v, t.u - (a * a - t.a * t.a) / (2.0 * jm));
-    if (a > 0.0) c.push((v_end - v) / a, 0.0);
-    c.push((a - t.a) / jm, -jm);
-    v = t.u;
-    a = t.a;
-    first = m + 1;
-    if (m == nt - 1) break;
+    const double v_m = 0.5 * (e0 + e1) + (r1 - l0) / (2.0 * two_j);
+    if (v_m <= e0) {  // the fall from the band's lower edge
+      c.push((std::sqrt(r1 + two_j * (e1 - e0)) - std::sqrt(r1)) / jm, -jm);
+    } else if (v_m >= e1) {  // the rise to its upper edge
+      c.push((std::sqrt(l0 + two_j * (e1 - e0)) - std::sqrt(l0)) / jm, jm);
+    } else {
+      const double peak = std::sqrt(l0 + two_j * (v_m - e0));
+      c.push((peak - std::sqrt(l0)) / jm, jm);
+      c.push((peak - std::sqrt(r1)) / jm, -jm);
+    }
   }
   // Its distance, integrated step by step from va.
   trajectory::PathState x{0.0, va, 0.0, 0.0};
@@ -112,7 +114,7 @@ bool valid(const AccelerationBands& b) {
     if (!(b.top_mm_s[kk] > 0.0) || !std::isfinite(b.top_mm_s[kk]) || !(b.acceleration[kk] > 0.0) ||
         !std::isfinite(b.acceleration[kk]))
       return false;
-    if (k > 0 && !(b.top_mm_s[kk] > b.top_mm_s[kk - 1] && b.acceleration[kk] <= b.acceleration[kk - 1])) return false;
+    if (k > 0 && !(b.top_mm_s[kk] > b.top_mm_s[kk - 1])) return false;
   }
   return true;
 }

@@ -10,12 +10,17 @@
 // constraints.hpp's acceleration_bands), so that it speeds up and brakes harder where it is slow.
 //
 // Method: a change of speed from va up to vb (from and to zero acceleration) is the time-optimal
-// one under the staircase bound a <= alpha_k while v is in band k and |j| <= J: the jerk +J until
-// the acceleration meets the bound, then along the bound, which is flat (jerk 0) at a band's
-// acceleration or a ramp down at -J that arrives at the next band's top with the next band's
-// acceleration (or at vb with zero). A braking is the time mirror of the change up from its end
-// speed. A profile is such a change up from v0 to a peak speed, a cruise and a braking to v1; the
-// peak is the largest (at most the cap) whose two changes fit in the length, by bisection.
+// one under the staircase bound a <= alpha_k while v is in band k and |j| <= J. In the plane of the
+// speed and the squared acceleration g = a^2 the jerk is half the slope (j = a da/dv = g'/2), so the
+// fastest change takes the largest g with |g'| <= 2J under the bound: the least of
+// alpha(u)^2 + 2J |v - u| over every speed u, zero at va and vb (one sweep up and one down over the
+// band edges). In each band that is a ramp up at +J, a flat along the band's acceleration and a ramp
+// down at -J; the accelerations may rise from one band to the next (a chain profile's change of
+// speed that passes its tight stretches only at its slow end, plan/chain_profile.hpp), where the
+// ramp up starts only once the speed is past the tight band's top. A braking is the time mirror of
+// the change up from its end speed. A profile is such a change up from v0 to a peak speed, a cruise
+// and a braking to v1; the peak is the largest (at most the cap) whose two changes fit in the
+// length, by bisection.
 #include <kontur/plan/scurve.hpp>
 #include <kontur/trajectory/path_profile.hpp>
 
@@ -26,12 +31,13 @@
 namespace kontur::plan {
 
 /// Path acceleration bounds by speed band: at speeds v <= top_mm_s[k] the path acceleration may be
-/// up to acceleration[k] (top speeds ascending, accelerations non-increasing, the last top the
-/// piece's speed cap with its S-curve's acceleration). The path jerk is `max_jerk` at every speed
+/// up to acceleration[k] (top speeds ascending, the last top the piece's speed cap with its
+/// S-curve's acceleration; on a curve the accelerations do not rise with the speed, across the
+/// stretches of a chain they may). The path jerk is `max_jerk` at every speed
 /// (at most the S-curve's: the cross term 3 K_i v a is largest in some band). n = 0: no bands (a
 /// line, or nothing to gain), the S-curve's constant limits hold.
 struct AccelerationBands {
-  static constexpr int kMax = 17;  // (chain_profile.cpp: one more than its speed levels)
+  static constexpr int kMax = 23;  // (chain_profile.cpp: one more than its speed levels and band tops)
   std::array<double, kMax> top_mm_s{};      ///< [mm/s]
   std::array<double, kMax> acceleration{};  ///< [mm/s^2]
   int n = 0;
