@@ -3,6 +3,8 @@
 // ends and continuity over seeded random chains; never slower than the S-curve at the smallest cap.
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <algorithm>
 #include <cmath>
 #include <kontur/plan/chain_profile.hpp>
@@ -363,6 +365,29 @@ TEST(ChainProfile, BrakesIntoTightStretchesUnderTheLimitsOfThoseItPassesAtEachSp
   EXPECT_GT(v_max, 115.0);
   EXPECT_LT(a_min_above, -1.5 * 162.0);
   EXPECT_LT(p->duration(), 0.9 * flat.duration());
+}
+
+// A braking into a tight last stretch whose bands leave less acceleration at every speed than the
+// stretches before it leave at theirs. It passes the tight stretch only below 38 mm/s; above, it
+// brakes under the others' bands. When every band was held to the acceleration of the band below
+// it (bands could not rise with the speed), the whole braking ran at the tight stretch's 150 mm/s^2.
+TEST(ChainProfile, BrakesHarderBeforeATightLastStretchThanInIt) {
+  std::vector<CapStretch> st;
+  for (int k = 0; k < 40; ++k) st.push_back({1.0, 100.0, 600.0, 7e4, bands_of(100.0, 600.0, 2.0, 6.5e4)});
+  st.push_back({0.4, 40.0, 150.0, 7e4, bands_of(40.0, 150.0, 3.0, 6.5e4)});
+  const PathLimits ceiling{40.0, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  const ScurveProfile tight = plan_scurve(40.4, 100.0, 35.0, {100.0, 150.0, 6.5e4});  // at 150 throughout
+  const auto p = plan_chain_profile(st, 100.0, 35.0, ceiling, 0.0005, 40.4 / 35.0);
+  ASSERT_TRUE(p.has_value());
+  expect_within_own_bands(*p, st);
+  EXPECT_EQ(p->end_velocity(), 35.0);
+  double a_min_above = 0.0;  // the braking above the tight stretch's speeds [mm/s^2]
+  for (int k = 0; k <= 4000; ++k) {
+    const auto x = p->sample(p->duration() * k / 4000);
+    if (x.v > 45.0) a_min_above = std::min(a_min_above, x.a);
+  }
+  EXPECT_LT(a_min_above, -600.0);
+  EXPECT_LT(p->duration(), 0.9 * tight.duration());
 }
 
 TEST(ChainProfile, SeededRandomBandedChainsKeepEachStretchsBands) {

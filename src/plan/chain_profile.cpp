@@ -113,10 +113,17 @@ class ChainPlanner {
     double top = 0.0;
     for (double c : caps_) top = std::max(top, c);
     slack_v_ = tolerances::chain_profile_speed_slack * top;
-    // The limits at speed levels (shares of the largest cap), each stretch's at its band that
-    // holds up to the level; without bands, one level: every stretch's at its cap.
-    if (banded_)
+    // The limits at speed levels (shares of the largest cap, and the look-ahead's band tops: shares
+    // of the smallest, so that a change of speed the look-ahead planned under the chain's bands is
+    // judged here under bands at least as large), each stretch's at its band that holds up to the
+    // level; without bands, one level: every stretch's at its cap.
+    if (banded_) {
+      const double least_cap = *std::min_element(caps_.begin(), caps_.end());
       for (const double f : tolerances::chain_profile_speed_levels) levels_.push_back(f * top);
+      for (const double f : tolerances::plan_acceleration_band_tops) levels_.push_back(f * least_cap);
+      std::sort(levels_.begin(), levels_.end());
+      levels_.erase(std::unique(levels_.begin(), levels_.end()), levels_.end());
+    }
     levels_.push_back(std::numeric_limits<double>::infinity());
     std::vector<double> acc(stretches.size()), jerk(stretches.size());
     for (const double level : levels_) {
@@ -128,12 +135,6 @@ class ChainPlanner {
       min_acc_.emplace_back(acc);
       min_jerk_.emplace_back(jerk);
     }
-    // (the largest path acceleration of any stretch at any speed, at most the chain's)
-    for (const CapStretch& c : stretches) {
-      max_acc_ = std::max(max_acc_, c.max_acceleration);
-      for (int k = 0; k < c.bands.n; ++k) max_acc_ = std::max(max_acc_, c.bands.acceleration[static_cast<std::size_t>(k)]);
-    }
-    max_acc_ = std::min(max_acc_, limits_.max_acceleration);
     junction_speed_.assign(caps_.size() + 1, 0.0);
     junction_speed_[caps_.size()] = v1_;
     for (std::size_t m = caps_.size() - 1; m >= 1; --m)
@@ -283,7 +284,8 @@ class ChainPlanner {
   // to it; up to the top (max(v, w, peak)), l.
   [[nodiscard]] AccelerationBands change_bands(double from, double to, double v, double w, const Lim& l,
                                                double peak = 0.0) const {
-    static_assert(std::size(tolerances::chain_profile_speed_levels) < AccelerationBands::kMax);
+    static_assert(std::size(tolerances::chain_profile_speed_levels) + std::size(tolerances::plan_acceleration_band_tops) <
+                  AccelerationBands::kMax);
     const bool braking = v > w;
     const double top = std::max({v, w, peak}), low = std::min(v, w);
     // (the range change_limits settled on: the stretches within its distance at l)
@@ -298,35 +300,33 @@ class ChainPlanner {
       ++bands.n;
     };
     // Each band takes the smallest limits of the stretches the change may pass at its speeds only.
-    // A monotone change (no peak above both ends) starts from zero acceleration and never exceeds
-    // max_acc_, so it runs faster than `below` only farther than (below^2 - low^2) / (2 max_acc_)
-    // from its slow end: a braking into tight stretches passes them slowly (runs_above). A change
-    // with a peak: every stretch it runs through, at every band.
+    // A monotone change (no peak above both ends) runs at most at each band's acceleration while
+    // in it, so it runs faster than `below` only farther from its slow end than the sum over the
+    // bands below of (top^2 - bottom^2) / (2 acceleration) (`reach`): a braking into tight
+    // stretches passes them slowly (runs_above), and the bands above them may leave more
+    // acceleration than those below. A change with a peak: every stretch it runs through, at every
+    // band, which leaves the accelerations not rising with the speed.
     const bool monotone = !(peak > std::max(v, w));
-    const auto runs_above = [&](double below) -> std::pair<std::size_t, std::size_t> {
-      if (!monotone || !(below > low) || !(max_acc_ > 0.0)) return {first, last};
-      const double reach = (below * below - low * low) / (2.0 * max_acc_);
+    double below = low;   // the lower edge of the band being added [mm/s]
+    double reach = 0.0;   // [mm] the least distance from the slow end at which it runs above `below`
+    const auto runs_above = [&]() -> std::pair<std::size_t, std::size_t> {
+      if (!monotone || !(reach > 0.0)) return {first, last};
       if (braking) return {first, std::max(first, std::min(last, stretch_ending_at(to - reach)))};
       return {std::min(last, std::max(first, stretch_at(from + reach))), last};
     };
-    double below = low;  // the lower edge of the band being added [mm/s]
     const auto add_band = [&](std::size_t k, double top_mm_s) {
-      const auto [f, g] = runs_above(below);
-      add(top_mm_s, std::max(min_acc_[k](f, g), l.a));
+      const auto [f, g] = runs_above();
+      const double acc = std::max(min_acc_[k](f, g), l.a);
+      add(top_mm_s, acc);
       bands.max_jerk = std::min(bands.max_jerk, min_jerk_[k](f, g));
+      if (acc > 0.0 && std::isfinite(acc)) reach += (top_mm_s * top_mm_s - below * below) / (2.0 * acc);
+      below = top_mm_s;
     };
     for (std::size_t k = 0; k + 1 < levels_.size(); ++k) {
       if (!(levels_[k] > low) || !(levels_[k] < top - slack_v_)) continue;
       add_band(k, levels_[k]);
-      below = levels_[k];
     }
     add_band(level(top), top);
-    // (accelerations not rising with the speed, as AccelerationBands asks: a faster band, over
-    // fewer stretches, may leave more than a slower one; it keeps the slower one's. Before the
-    // stretches were chosen per band, each band's were the same and this changed nothing.)
-    for (int k = 1; k < bands.n; ++k)
-      bands.acceleration[static_cast<std::size_t>(k)] =
-          std::min(bands.acceleration[static_cast<std::size_t>(k)], bands.acceleration[static_cast<std::size_t>(k - 1)]);
     return bands;
   }
 
@@ -585,7 +585,6 @@ class ChainPlanner {
   // [level]: each stretch's limits at speeds up to the level, and their minima over ranges
   std::vector<RangeMin> min_acc_, min_jerk_;
   double length_ = 0.0, slack_v_ = 0.0;
-  double max_acc_ = 0.0;  // the largest acceleration limit of any stretch at any speed [mm/s^2]
   bool banded_ = false;  // a stretch has speed bands: the limits are looked up by speed level
 };
 

@@ -12,10 +12,10 @@
 // its cap, and the end at exactly its end speed. That change is judged at the smallest limits of
 // the stretches it runs through: braking, it cruises first and brakes at the end, so only the
 // stretches before the junction that the braking covers count; where stretches have speed bands,
-// under bands of those limits at speed levels (harder as it slows), each band over the stretches
-// the change can pass at its speeds: not those nearer to its slow end than it can change speed
-// from the band's at the largest acceleration of any stretch (a braking into a tight stretch
-// passes it slowly). When no jerk is safe,
+// under bands of those limits at speed levels (shares of the largest cap and the look-ahead's band
+// tops, shares of the smallest), each band over the stretches the change can pass at its speeds:
+// not those nearer to its slow end than the bands below it let it change speed (a braking into a
+// tight stretch passes it slowly, and may brake harder before it). When no jerk is safe,
 // that manoeuvre is carried out, exactly, towards the constraint that binds; where its S-curve
 // would pass an earlier junction above that junction's speed, it aims at that junction instead.
 // The profile ends exactly at its length and end speed. The result is checked phase by phase
