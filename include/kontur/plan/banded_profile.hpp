@@ -37,7 +37,7 @@ namespace kontur::plan {
 /// (at most the S-curve's: the cross term 3 K_i v a is largest in some band). n = 0: no bands (a
 /// line, or nothing to gain), the S-curve's constant limits hold.
 struct AccelerationBands {
-  static constexpr int kMax = 23;  // (chain_profile.cpp: one more than its speed levels and band tops)
+  static constexpr int kMax = 26;  // (chain_profile.cpp: one more than its speed levels and band tops)
   std::array<double, kMax> top_mm_s{};      ///< [mm/s]
   std::array<double, kMax> acceleration{};  ///< [mm/s^2]
   int n = 0;
