@@ -8,6 +8,8 @@
 #include <kontur/geometry/helix_arc.hpp>
 #include <kontur/geometry/length.hpp>
 #include <kontur/geometry/line_segment.hpp>
+#include <kontur/geometry/nurbs.hpp>
+#include <kontur/geometry/span_polynomial.hpp>
 #include <kontur/geometry/transition_curve.hpp>
 #include <kontur/plan/constraints.hpp>
 #include <kontur/plan/motion_planner.hpp>
@@ -174,6 +176,35 @@ TEST(MotionPlanner, ACornerBlendIsCutSoThatTheChainBrakesInsideIt) {
       v_there = p.v_mm_s;
     }
   EXPECT_GT(v_there, 1.005 * whole_cap);  // (uncut, the blend runs at most at whole_cap)
+}
+
+// A span whose curvature peaks gently inside (a parabola y = c x^2 / L over |x| <= L as one cubic
+// span, c = 0.6: its outer quarters' caps about 1.26 times the whole's) is cut into quarters
+// (tolerances::plan_span_cut_cap_ratio), so that only the part around the peak runs at the peak's
+// cap. At a cut ratio of 1.5 it stayed one piece at the peak's cap.
+TEST(MotionPlanner, ASpanWhoseCurvaturePeaksGentlyInsideIsCutAroundThePeak) {
+  Machine m = default_machine();
+  testing::set_every_axis(m, 500.0, 1000.0, 1000.0 / m.servo_period_s);
+  const double L = 10.0, c = 0.6, F = 400.0;  // [mm], [-], [mm/s]
+  NurbsData d;
+  d.degree = 3;
+  d.knots = {0, 0, 0, 0, 1, 1, 1, 1};
+  // x = L (-1 + 2t), y = L c (1 - 4t + 4t^2): Bezier points of those monomials
+  const std::array<double, 4> ax{-L, 2.0 * L, 0.0, 0.0}, ay{L * c, -4.0 * L * c, 4.0 * L * c, 0.0};
+  const auto bezier = [](const std::array<double, 4>& a) {
+    return std::array<double, 4>{a[0], a[0] + a[1] / 3.0, a[0] + 2.0 * a[1] / 3.0 + a[2] / 3.0, a[0] + a[1] + a[2] + a[3]};
+  };
+  const auto bx = bezier(ax), by = bezier(ay);
+  for (std::size_t i = 0; i < 4; ++i) d.points.emplace_back(bx[i], by[i], 0.0);
+  const SpanPolynomialCurve span{NurbsCurve(d)};
+  const ArcLengthTable table(span);
+  const std::vector<MovePiece> pieces = split_move(span, table, F, m);
+  ASSERT_GE(pieces.size(), 3u);
+  const double share = tolerances::plan_centripetal_shares[0];
+  const double whole = speed_cap(path_geometry(span, span.u_min(), span.u_max()), F, m, share);
+  EXPECT_GT(speed_cap(pieces.front().geometry, F, m, share), 1.2 * whole);
+  EXPECT_GT(speed_cap(pieces.back().geometry, F, m, share), 1.2 * whole);
+  for (std::size_t i = 1; i < pieces.size(); ++i) EXPECT_EQ(pieces[i].u0, pieces[i - 1].u1);
 }
 
 // The slowest parts of a chain (its lows: a cut blend's two middle parts, of the same cap) are

@@ -360,6 +360,14 @@ inline constexpr double plan_peak_refine_floor = 1e-20;
 /// then slows only a short stretch around it, issue 20), at most this many times deep and into at
 /// most this many pieces.
 inline constexpr int plan_span_max_depth = 30;
+/// ... and in its first plan_span_fine_cut_depth levels already where one part's cap is over
+/// plan_span_cut_cap_ratio times the whole's (since 2026-12-05): a piece runs at the smallest cap
+/// of its stretch, so a span whose curvature peaks gently inside ran a third or more of it at the
+/// peak's cap. Deeper, the cut keeps to plan_piece_cap_ratio, so that the pieces left go to a
+/// near-cusp (at 1.1 on every level, a nearly closed quadratic Bezier took 6559 s instead of 2 s:
+/// its 256 pieces were spent away from the cusp).
+inline constexpr double plan_span_cut_cap_ratio = 1.1;
+inline constexpr int plan_span_fine_cut_depth = 2;
 inline constexpr int plan_span_max_pieces = 256;
 /// A corner blend between two lines turns from zero curvature at its ends to its peak inside, and
 /// its ends join the lines smoothly: it is cut once into this many equal parts of its parameter

@@ -28,16 +28,21 @@ double span_cap(const PathGeometry& g, double feed_mm_s, const Machine& machine)
 }
 
 // How add_stretches cuts a span: into `parts` equal parts of its parameter where one part's cap
-// is over `ratio` times the whole's, at most `max_depth` times deep.
+// is over `ratio` times the whole's (`fine_ratio` in the first `fine_depth` levels), at most
+// `max_depth` times deep.
 struct StretchCut {
   int parts = 4;
   double ratio = tolerances::plan_piece_cap_ratio;
   int max_depth = tolerances::plan_span_max_depth;
+  double fine_ratio = tolerances::plan_span_cut_cap_ratio;
+  int fine_depth = tolerances::plan_span_fine_cut_depth;
+  [[nodiscard]] constexpr double ratio_at(int depth) const noexcept { return depth < fine_depth ? fine_ratio : ratio; }
 };
 
 constexpr StretchCut kSpanCut{};
 // a corner blend, or a blend at an arc (tolerances::plan_blend_parts)
-constexpr StretchCut kBlendCut{tolerances::plan_blend_parts, tolerances::plan_blend_cap_ratio, 1};
+constexpr StretchCut kBlendCut{tolerances::plan_blend_parts, tolerances::plan_blend_cap_ratio, 1,
+                               tolerances::plan_blend_cap_ratio, 0};
 constexpr int kMaxCutParts = std::max(kSpanCut.parts, kBlendCut.parts);
 
 // Appends [u0, u1] to `out`, cut in four while one part's cap is over plan_piece_cap_ratio times the
@@ -61,14 +66,14 @@ void add_stretches(const Curve& c, double u0, double u1, const PathGeometry& g, 
   PathGeometry straight = g;
   straight.drop_curvature();
   const bool bent = cap < span_cap(straight, feed_mm_s, machine);
-  // No part can be cut.ratio times faster where even the smallest sampled curvature and
+  // No part can be ratio_at(depth) times faster where even the smallest sampled curvature and
   // curvature change would not raise the cap that much (the parts are then not sampled).
   const auto may_pay = [&] {
     PathGeometry easiest = g;
     easiest.curvature = g.curvature_low;
     easiest.curvature_rate = g.curvature_rate_low;
     easiest.max_kappa = g.kappa_low;
-    return span_cap(easiest, feed_mm_s, machine) > cut.ratio * cap;
+    return span_cap(easiest, feed_mm_s, machine) > cut.ratio_at(depth) * cap;
   };
   if (bent && depth < cut.max_depth && budget > parts - 1 && long_enough() && may_pay()) {
     const auto n = static_cast<std::size_t>(parts);
@@ -85,7 +90,7 @@ void add_stretches(const Curve& c, double u0, double u1, const PathGeometry& g, 
         cs[i] = span_cap(gs[i], feed_mm_s, machine);
         best = std::max(best, cs[i]);
       }
-      if (best > cut.ratio * cap) {
+      if (best > cut.ratio_at(depth) * cap) {
         budget -= parts - 1;
         for (std::size_t i = 0; i < n; ++i)
           add_stretches(c, us[i], us[i + 1], gs[i], cs[i], feed_mm_s, machine, speed_floor, depth + 1, out, budget);
