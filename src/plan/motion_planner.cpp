@@ -46,8 +46,9 @@ constexpr StretchCut kBlendCut{tolerances::plan_blend_parts, tolerances::plan_bl
 constexpr int kMaxCutParts = std::max(kSpanCut.parts, kBlendCut.parts);
 
 // Appends [u0, u1] to `out`, cut in four while one part's cap is over plan_piece_cap_ratio times the
-// whole's (a tight turn in a span then slows only a short stretch around it; in four, not two: a
-// span tight at both ends and easy between has each half as slow as the whole). Only a cap set by
+// whole's (plan_span_cut_cap_ratio in the first plan_span_fine_cut_depth levels; a tight turn in a
+// span then slows only a short stretch around it; in four, not two: a span tight at both ends and
+// easy between has each half as slow as the whole). Only a cap set by
 // the curvature is looked at: the feed and the axis velocities do not change much within a span.
 // A corner blend is cut once, finer (kBlendCut); so is a blend at an arc whose parts are long
 // enough to brake in (tolerances::plan_blend_part_min_periods).
