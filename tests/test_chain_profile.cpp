@@ -3,8 +3,6 @@
 // ends and continuity over seeded random chains; never slower than the S-curve at the smallest cap.
 #include <gtest/gtest.h>
 
-#include <array>
-
 #include <algorithm>
 #include <cmath>
 #include <kontur/plan/chain_profile.hpp>

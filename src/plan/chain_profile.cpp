@@ -110,6 +110,7 @@ class ChainPlanner {
     }
     length_ = bounds_.back();
     min_cap_ = RangeMin(caps_);
+    least_cap_ = min_cap_(0, caps_.size() - 1);
     double top = 0.0;
     for (double c : caps_) top = std::max(top, c);
     slack_v_ = tolerances::chain_profile_speed_slack * top;
@@ -118,9 +119,8 @@ class ChainPlanner {
     // judged here under bands at least as large), each stretch's at its band that holds up to the
     // level; without bands, one level: every stretch's at its cap.
     if (banded_) {
-      const double least_cap = *std::min_element(caps_.begin(), caps_.end());
       for (const double f : tolerances::chain_profile_speed_levels) levels_.push_back(f * top);
-      for (const double f : tolerances::plan_acceleration_band_tops) levels_.push_back(f * least_cap);
+      for (const double f : tolerances::plan_acceleration_band_tops) levels_.push_back(f * least_cap_);
       std::sort(levels_.begin(), levels_.end());
       levels_.erase(std::unique(levels_.begin(), levels_.end()), levels_.end());
     }
@@ -294,11 +294,6 @@ class ChainPlanner {
     const std::size_t last = stretch_ending_at(b), first = std::min(stretch_at(a), last);
     AccelerationBands bands;
     bands.max_jerk = l.j;
-    const auto add = [&](double top_mm_s, double acceleration) {
-      bands.top_mm_s[static_cast<std::size_t>(bands.n)] = top_mm_s;
-      bands.acceleration[static_cast<std::size_t>(bands.n)] = acceleration;
-      ++bands.n;
-    };
     // Each band takes the smallest limits of the stretches the change may pass at its speeds only.
     // A monotone change (no peak above both ends) runs at most at each band's acceleration while
     // in it, so it runs faster than `below` only farther from its slow end than the sum over the
@@ -317,7 +312,9 @@ class ChainPlanner {
     const auto add_band = [&](std::size_t k, double top_mm_s) {
       const auto [f, g] = runs_above();
       const double acc = std::max(min_acc_[k](f, g), l.a);
-      add(top_mm_s, acc);
+      bands.top_mm_s[static_cast<std::size_t>(bands.n)] = top_mm_s;
+      bands.acceleration[static_cast<std::size_t>(bands.n)] = acc;
+      ++bands.n;
       bands.max_jerk = std::min(bands.max_jerk, min_jerk_[k](f, g));
       if (acc > 0.0 && std::isfinite(acc)) reach += (top_mm_s * top_mm_s - below * below) / (2.0 * acc);
       below = top_mm_s;
@@ -392,7 +389,6 @@ class ChainPlanner {
 
   // The profile, or none if the steps ran out or the check failed.
   [[nodiscard]] std::optional<trajectory::PathProfile> plan(double dt, double time_bound_s) {
-    const double cap_all = *std::min_element(caps_.begin(), caps_.end());
     std::vector<ProfilePhase> phases;
     Kin x{0.0, v0_, 0.0};
     double t = 0.0;
@@ -454,7 +450,7 @@ class ChainPlanner {
       double w = 0.0;
       for (;;) {
         w = landing_speed(bind, x.v);
-        const double peak = std::max({x.v, w, x.v > slack_v_ ? 0.0 : cap_all});
+        const double peak = std::max({x.v, w, x.v > slack_v_ ? 0.0 : least_cap_});
         const Lim l = change_limits(x.s, bounds_[bind], x.v, w, peak);
         const double dist = bounds_[bind] - x.s;
         if (!(dist >= 0.0) || x.v < 0.0) return std::nullopt;
@@ -585,6 +581,7 @@ class ChainPlanner {
   // [level]: each stretch's limits at speeds up to the level, and their minima over ranges
   std::vector<RangeMin> min_acc_, min_jerk_;
   double length_ = 0.0, slack_v_ = 0.0;
+  double least_cap_ = 0.0;  // the smallest cap of any stretch [mm/s]
   bool banded_ = false;  // a stretch has speed bands: the limits are looked up by speed level
 };
 
